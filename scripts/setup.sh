@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Shared by test.sh and demo.sh: install the Debian packages hvi needs (skipping those already
+# installed), then configure and build a Release build in build/.
+set -euo pipefail
+
+HVI_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+HVI_BUILD="${HVI_BUILD:-$HVI_ROOT/build}"
+
+packages=(
+  cmake make g++ git pkg-config
+  libtomlplusplus-dev libcli11-dev libfmt-dev libhdf5-dev libeigen3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-numpy python3-h5py python3-matplotlib
+)
+
+install_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "hvi: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+build_hvi() {
+  cmake -S "$HVI_ROOT" -B "$HVI_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$HVI_BUILD" --parallel "$(nproc)"
+}
+
+install_packages
+build_hvi
