@@ -1,0 +1,37 @@
+#include "geometry/lattice_sampler.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace hvi::geometry {
+
+double PointSet::total_volume() const {
+  double v = 0.0;
+  for (const double x : volume) v += x;
+  return v;
+}
+
+PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor) {
+  const Bounds b = solid.bounds();
+  long lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    // Lattice points are anchor + (i + 1/2) spacing.
+    lo[d] = static_cast<long>(std::floor((b.lower[d] - anchor[d]) / spacing - 0.5));
+    hi[d] = static_cast<long>(std::ceil((b.upper[d] - anchor[d]) / spacing - 0.5));
+  }
+  PointSet points;
+  for (long k = lo[2]; k <= hi[2]; ++k)
+    for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long i = lo[0]; i <= hi[0]; ++i) {
+        const Point x = {anchor[0] + (i + 0.5) * spacing, anchor[1] + (j + 0.5) * spacing,
+                         anchor[2] + (k + 0.5) * spacing};
+        if (!solid.contains(x)) continue;
+        points.position.insert(points.position.end(), x.begin(), x.end());
+      }
+  const std::size_t n = points.position.size() / 3;
+  if (n == 0) throw std::invalid_argument("the solid contains no lattice point: it is thinner than the point spacing");
+  points.volume.assign(n, solid.volume() / static_cast<double>(n));
+  return points;
+}
+
+}  // namespace hvi::geometry

@@ -1,0 +1,13 @@
+#pragma once
+// Lattice sampling of a solid into material points: points at the centres of a cubic lattice of
+// spacing `spacing` anchored at `anchor` (the grid origin, so that each grid cell holds the same
+// n x n x n points), kept where the solid contains them. Each point carries an equal share of the
+// solid's exact volume, so the sampled mass equals density x exact volume to round-off.
+#include "geometry/point_set.hpp"
+#include "geometry/primitives.hpp"
+
+namespace hvi::geometry {
+
+PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor);
+
+}  // namespace hvi::geometry
