@@ -1,0 +1,39 @@
+// Benchmarks of the MPM core. Run: build/hvi_bench  (or --benchmark_filter=Elastic)
+// Reports particle_steps_per_s (particles x steps / wall time) and bytes_per_particle (all
+// particle arrays, grid and bins divided by the particle count).
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include "bench/block_setup.hpp"
+
+namespace {
+
+// The reference workload: 1,000,000 particles (50^3 cells x 8 particles per cell),
+// linear shape functions, MUSL, 100 steps, with 1 and 2 threads.
+void ElasticBlock(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  omp_set_num_threads(threads);
+  hvi::mpm::SolverSettings settings;
+  const int steps = 100;
+  double particles = 0, bytes = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto solver = hvi::bench::elastic_block(50, 2, settings);
+    state.ResumeTiming();
+    for (int s = 0; s < steps; ++s) solver->step();
+    state.PauseTiming();
+    particles = static_cast<double>(solver->particles().size());
+    bytes = static_cast<double>(solver->bytes());
+    state.ResumeTiming();
+  }
+  state.counters["particles"] = particles;
+  state.counters["threads"] = threads;
+  state.counters["particle_steps_per_s"] =
+      benchmark::Counter(particles * steps * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["bytes_per_particle"] = bytes / particles;
+}
+BENCHMARK(ElasticBlock)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

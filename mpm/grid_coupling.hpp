@@ -1,0 +1,35 @@
+#pragma once
+// Hook points where another model shares the grid's nodes (the finite-element far field of the
+// hybrid, external nodal loads). The solver calls them at fixed places of the step, so no model
+// has to edit the MPM loop:
+//   1. request_blocks       while the grid is built: blocks the model needs active
+//   2. add_to_grid          after particles scattered mass and momentum (stage `mass_momentum`),
+//                           after they scattered force (stage `force`), and after the MUSL
+//                           momentum remap (stage `remapped`)
+//   3. take_from_grid       after the nodal velocities at the end of the step are known
+//   4. stable_time_step     when the next time step is chosen
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "mpm/grid.hpp"
+
+namespace hvi::mpm {
+
+enum class GridStage {
+  mass_momentum,  // node mass and p = momentum are scattered
+  force,          // f = force is scattered
+  remapped,       // MUSL: p = momentum remapped from the updated particle velocities
+};
+
+class GridCoupling {
+ public:
+  virtual ~GridCoupling() = default;
+  virtual void request_blocks(std::vector<std::uint64_t>& /*keys*/) const {}
+  virtual void add_to_grid(SparseGrid& /*grid*/, GridStage /*stage*/, double /*time*/,
+                           double /*dt*/) {}
+  virtual void take_from_grid(const SparseGrid& /*grid*/, double /*time*/, double /*dt*/) {}
+  virtual double stable_time_step() const { return std::numeric_limits<double>::infinity(); }
+};
+
+}  // namespace hvi::mpm

@@ -1,0 +1,78 @@
+#include "mpm/io/checkpoint.hpp"
+
+#include "mpm/io/hdf5_file.hpp"
+
+namespace hvi::mpm::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kind_prefix = "kind:";     // attribute kind:<name> = FieldKind
+const std::string extra_prefix = "extra:";
+}  // namespace
+
+void write_checkpoint(const fs::path& path, const Solver& solver, const CheckpointExtras& extras) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    Hdf5File file(tmp.string(), Hdf5File::Mode::create);
+    const Particles& P = solver.particles();
+    const std::size_t n = P.size();
+    for (const auto& f : P.real_fields()) {
+      if (f.scratch) continue;
+      const int nc = components(f.kind);
+      file.write("field_" + f.name, f.data->data(), n, nc);
+      file.write_attribute(kind_prefix + f.name, static_cast<std::int64_t>(f.kind));
+    }
+    for (const auto& f : P.int_fields()) file.write("int_" + f.name, f.data->data(), n, 1);
+    const SolverState& s = solver.state();
+    file.write_attribute("time", s.time);
+    file.write_attribute("step", static_cast<std::int64_t>(s.step));
+    file.write_attribute("next_dt", s.next_dt);
+    file.write_attribute("removed_particles", static_cast<std::int64_t>(s.removed.particles));
+    file.write_attribute("removed_mass", s.removed.mass);
+    file.write_attribute("removed_kinetic", s.removed.kinetic);
+    file.write_attribute("removed_internal", s.removed.internal);
+    for (int d = 0; d < 3; ++d)
+      file.write_attribute("removed_momentum_" + std::to_string(d), s.removed.momentum[d]);
+    for (const auto& [key, value] : extras) file.write_attribute(extra_prefix + key, value);
+  }
+  fs::rename(tmp, path);
+}
+
+CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
+  Hdf5File file(path.string(), Hdf5File::Mode::read);
+  Particles& P = solver.particles();
+  const std::size_t n = file.shape("int_id").first;
+  P.resize(n);
+  for (const auto& name : file.dataset_names()) {
+    if (name.rfind("field_", 0) == 0) {
+      const std::string field = name.substr(6);
+      const auto kind = static_cast<FieldKind>(file.read_integer_attribute(kind_prefix + field));
+      std::vector<double>& data =
+          P.has_field(field) ? P.field(field) : P.add_field(field, kind, "", 0.0, field != "gimp_half_width");
+      data = file.read_doubles(name);
+    } else if (name.rfind("int_", 0) == 0) {
+      const std::string field = name.substr(4);
+      for (const auto& f : P.int_fields())
+        if (f.name == field) *f.data = file.read_integers(name);
+    }
+  }
+  SolverState s;
+  s.time = file.read_double_attribute("time");
+  s.step = file.read_integer_attribute("step");
+  s.next_dt = file.read_double_attribute("next_dt");
+  s.removed.particles = file.read_integer_attribute("removed_particles");
+  s.removed.mass = file.read_double_attribute("removed_mass");
+  s.removed.kinetic = file.read_double_attribute("removed_kinetic");
+  s.removed.internal = file.read_double_attribute("removed_internal");
+  for (int d = 0; d < 3; ++d)
+    s.removed.momentum[d] = file.read_double_attribute("removed_momentum_" + std::to_string(d));
+  solver.restore(s);
+  CheckpointExtras extras;
+  for (const auto& name : file.attribute_names())
+    if (name.rfind(extra_prefix, 0) == 0)
+      extras[name.substr(extra_prefix.size())] = file.read_double_attribute(name);
+  return extras;
+}
+
+}  // namespace hvi::mpm::io

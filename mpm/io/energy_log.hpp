@@ -1,0 +1,24 @@
+#pragma once
+// energy.csv: the energy and momentum balance of a run, one row every N steps.
+// Columns: step, time (s), dt (s), kinetic, internal (strain), dissipated, removed, total (J),
+// momentum_x/y/z (kg m/s, particles in the domain plus those removed), mass_removed (kg),
+// particles_removed.
+#include <filesystem>
+#include <fstream>
+
+#include "mpm/solver.hpp"
+
+namespace hvi::mpm::io {
+
+class EnergyLog {
+ public:
+  // Starts a new log (truncating), or for a resumed run keeps the rows up to `resume_step`.
+  EnergyLog(const std::filesystem::path& path, std::int64_t resume_step = -1);
+  void write(const Solver& solver, const EnergyReport& energy);
+  static std::string header();
+
+ private:
+  std::ofstream out_;
+};
+
+}  // namespace hvi::mpm::io

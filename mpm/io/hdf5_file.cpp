@@ -1,0 +1,186 @@
+#include "mpm/io/hdf5_file.hpp"
+
+#include <hdf5.h>
+
+namespace hvi::mpm::io {
+namespace {
+
+// Closes an HDF5 handle at scope exit.
+struct Handle {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  ~Handle() {
+    if (id >= 0) close(id);
+  }
+};
+
+hid_t check(hid_t id, const std::string& what, const std::string& path) {
+  if (id < 0) throw Hdf5Error("HDF5: cannot " + what + " in '" + path + "'");
+  return id;
+}
+
+void check_status(herr_t status, const std::string& what, const std::string& path) {
+  if (status < 0) throw Hdf5Error("HDF5: cannot " + what + " in '" + path + "'");
+}
+
+void write_dataset(hid_t file, const std::string& path, const std::string& name, hid_t type,
+                   const void* data, std::size_t rows, std::size_t columns) {
+  const hsize_t dims[2] = {rows, columns};
+  Handle space{check(H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr), "create dataspace", path),
+               H5Sclose};
+  Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
+  H5Pset_obj_track_times(dcpl.id, false);
+  Handle set{check(H5Dcreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT),
+                   "create dataset '" + name + "'", path),
+             H5Dclose};
+  if (rows * columns > 0)
+    check_status(H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+                 "write dataset '" + name + "'", path);
+}
+
+void write_attr(hid_t file, const std::string& path, const std::string& name, hid_t type,
+                const void* data) {
+  Handle space{H5Screate(H5S_SCALAR), H5Sclose};
+  Handle attr{check(H5Acreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, H5P_DEFAULT),
+                    "create attribute '" + name + "'", path),
+              H5Aclose};
+  check_status(H5Awrite(attr.id, type, data), "write attribute '" + name + "'", path);
+}
+
+}  // namespace
+
+Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr dumps
+  if (mode == Mode::create) {
+    Handle fcpl{H5Pcreate(H5P_FILE_CREATE), H5Pclose};
+    Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
+    // The oldest format that holds our data gives stable bytes across library versions.
+    H5Pset_libver_bounds(fapl.id, H5F_LIBVER_EARLIEST, H5F_LIBVER_V18);
+    file_ = check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.id, fapl.id), "create file", path);
+  } else {
+    file_ = check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open file", path);
+  }
+}
+
+Hdf5File::~Hdf5File() {
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void Hdf5File::write(const std::string& name, const double* data, std::size_t rows,
+                     std::size_t columns) {
+  write_dataset(file_, path_, name, H5T_NATIVE_DOUBLE, data, rows, columns);
+}
+
+void Hdf5File::write(const std::string& name, const std::int64_t* data, std::size_t rows,
+                     std::size_t columns) {
+  write_dataset(file_, path_, name, H5T_NATIVE_INT64, data, rows, columns);
+}
+
+void Hdf5File::write_attribute(const std::string& name, double value) {
+  write_attr(file_, path_, name, H5T_NATIVE_DOUBLE, &value);
+}
+
+void Hdf5File::write_attribute(const std::string& name, std::int64_t value) {
+  write_attr(file_, path_, name, H5T_NATIVE_INT64, &value);
+}
+
+void Hdf5File::write_attribute(const std::string& name, const std::string& value) {
+  Handle type{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(type.id, value.size() + 1);
+  write_attr(file_, path_, name, type.id, value.c_str());
+}
+
+bool Hdf5File::has_dataset(const std::string& name) const {
+  return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::vector<std::string> Hdf5File::dataset_names() const {
+  std::vector<std::string> names;
+  H5Literate(
+      file_, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+        static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+        return 0;
+      },
+      &names);
+  return names;
+}
+
+std::pair<std::size_t, std::size_t> Hdf5File::shape(const std::string& name) const {
+  Handle set{check(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path_),
+             H5Dclose};
+  Handle space{H5Dget_space(set.id), H5Sclose};
+  hsize_t dims[2] = {0, 1};
+  const int rank = H5Sget_simple_extent_dims(space.id, dims, nullptr);
+  return {dims[0], rank == 2 ? dims[1] : 1};
+}
+
+namespace {
+template <class T>
+std::vector<T> read_all(hid_t file, const std::string& path, const std::string& name, hid_t type,
+                        std::size_t count) {
+  Handle set{check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path),
+             H5Dclose};
+  std::vector<T> data(count);
+  if (count > 0)
+    check_status(H5Dread(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+                 "read dataset '" + name + "'", path);
+  return data;
+}
+}  // namespace
+
+std::vector<double> Hdf5File::read_doubles(const std::string& name) const {
+  const auto [r, c] = shape(name);
+  return read_all<double>(file_, path_, name, H5T_NATIVE_DOUBLE, r * c);
+}
+
+std::vector<std::int64_t> Hdf5File::read_integers(const std::string& name) const {
+  const auto [r, c] = shape(name);
+  return read_all<std::int64_t>(file_, path_, name, H5T_NATIVE_INT64, r * c);
+}
+
+bool Hdf5File::has_attribute(const std::string& name) const {
+  return H5Aexists(file_, name.c_str()) > 0;
+}
+
+double Hdf5File::read_double_attribute(const std::string& name) const {
+  Handle attr{check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
+              H5Aclose};
+  double v = 0;
+  check_status(H5Aread(attr.id, H5T_NATIVE_DOUBLE, &v), "read attribute '" + name + "'", path_);
+  return v;
+}
+
+std::int64_t Hdf5File::read_integer_attribute(const std::string& name) const {
+  Handle attr{check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
+              H5Aclose};
+  std::int64_t v = 0;
+  check_status(H5Aread(attr.id, H5T_NATIVE_INT64, &v), "read attribute '" + name + "'", path_);
+  return v;
+}
+
+std::string Hdf5File::read_string_attribute(const std::string& name) const {
+  Handle attr{check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
+              H5Aclose};
+  Handle type{H5Aget_type(attr.id), H5Tclose};
+  std::string v(H5Tget_size(type.id), '\0');
+  Handle mem{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(mem.id, v.size());
+  check_status(H5Aread(attr.id, mem.id, v.data()), "read attribute '" + name + "'", path_);
+  while (!v.empty() && v.back() == '\0') v.pop_back();
+  return v;
+}
+
+std::vector<std::string> Hdf5File::attribute_names() const {
+  std::vector<std::string> names;
+  H5Aiterate2(
+      file_, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+        static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+        return 0;
+      },
+      &names);
+  return names;
+}
+
+}  // namespace hvi::mpm::io

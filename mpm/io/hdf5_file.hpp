@@ -1,0 +1,51 @@
+#pragma once
+// A thin RAII wrapper over the HDF5 C API: just what snapshots and checkpoints need (1-D and 2-D
+// datasets of doubles and 64-bit integers, scalar attributes). Files carry no modification times,
+// so the same data gives byte-identical files.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hvi::mpm::io {
+
+class Hdf5Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Hdf5File {
+ public:
+  enum class Mode { create, read };
+  Hdf5File(const std::string& path, Mode mode);
+  ~Hdf5File();
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
+
+  // Dataset of rows x columns values (columns = 1 writes a 1-D dataset).
+  void write(const std::string& name, const double* data, std::size_t rows, std::size_t columns);
+  void write(const std::string& name, const std::int64_t* data, std::size_t rows, std::size_t columns);
+  void write_attribute(const std::string& name, double value);
+  void write_attribute(const std::string& name, std::int64_t value);
+  void write_attribute(const std::string& name, const std::string& value);
+
+  bool has_dataset(const std::string& name) const;
+  std::vector<std::string> dataset_names() const;
+  // Rows and columns of a dataset.
+  std::pair<std::size_t, std::size_t> shape(const std::string& name) const;
+  std::vector<double> read_doubles(const std::string& name) const;
+  std::vector<std::int64_t> read_integers(const std::string& name) const;
+  double read_double_attribute(const std::string& name) const;
+  std::int64_t read_integer_attribute(const std::string& name) const;
+  std::string read_string_attribute(const std::string& name) const;
+  bool has_attribute(const std::string& name) const;
+  std::vector<std::string> attribute_names() const;
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::int64_t file_ = -1;  // hid_t
+};
+
+}  // namespace hvi::mpm::io

@@ -1,0 +1,149 @@
+#include "mpm/io/snapshot_writer.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "mpm/io/hdf5_file.hpp"
+
+namespace hvi::mpm::io {
+
+namespace fs = std::filesystem;
+
+SnapshotWriter::SnapshotWriter(fs::path run_directory) : directory_(std::move(run_directory)) {}
+
+std::string SnapshotWriter::file_name(std::size_t index) {
+  return fmt::format("snapshots/particles_{:06d}.h5", index);
+}
+
+namespace {
+
+// Gathers a field in id order.
+template <class T>
+std::vector<T> in_order(const std::vector<T>& field, int nc, const std::vector<std::uint32_t>& order) {
+  std::vector<T> out(order.size() * nc);
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for (int c = 0; c < nc; ++c) out[k * nc + c] = field[order[k] * static_cast<std::size_t>(nc) + c];
+  return out;
+}
+
+}  // namespace
+
+void SnapshotWriter::write(const Solver& solver) {
+  const Particles& P = solver.particles();
+  const std::size_t n = P.size();
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return P.id[a] < P.id[b]; });
+
+  Entry entry{file_name(entries_.size()), solver.time(), solver.step_count(), n, {}};
+  fs::create_directories(directory_ / "snapshots");
+  Hdf5File file((directory_ / entry.file).string(), Hdf5File::Mode::create);
+  file.write_attribute("time", solver.time());
+  file.write_attribute("step", static_cast<std::int64_t>(solver.step_count()));
+
+  file.write("position", in_order(P.position, 3, order).data(), n, 3);
+  for (const auto& f : P.real_fields()) {
+    if (!f.output || f.scratch) continue;
+    const int nc = components(f.kind);
+    file.write(f.name, in_order(*f.data, nc, order).data(), n, nc);
+    entry.attributes.push_back({f.name, nc, false});
+  }
+  // Derived fields a hydrocode user expects to plot.
+  std::vector<double> density(n), pressure(n), mises(n), ratio(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t p = order[k];
+    density[k] = P.mass[p] / P.volume[p];
+    pressure[k] = -trace_sym(&P.stress[6 * p]) / 3.0;
+    mises[k] = von_mises(&P.stress[6 * p]);
+    ratio[k] = P.volume[p] / P.volume0[p];
+  }
+  for (const auto& [name, data] : {std::pair{"density", &density}, std::pair{"pressure", &pressure},
+                                   std::pair{"von_mises_stress", &mises},
+                                   std::pair{"volume_ratio", &ratio}}) {
+    file.write(name, data->data(), n, 1);
+    entry.attributes.push_back({name, 1, false});
+  }
+  for (const auto& f : P.int_fields()) {
+    file.write(f.name, in_order(*f.data, 1, order).data(), n, 1);
+    entry.attributes.push_back({f.name, 1, true});
+  }
+  entries_.push_back(std::move(entry));
+  write_index();
+}
+
+void SnapshotWriter::resume(std::int64_t last_step) {
+  entries_.clear();
+  for (std::size_t index = 0;; ++index) {
+    const fs::path path = directory_ / file_name(index);
+    if (!fs::exists(path)) break;
+    bool keep = false;
+    {
+      Hdf5File file(path.string(), Hdf5File::Mode::read);
+      const std::int64_t step = file.read_integer_attribute("step");
+      if (step <= last_step && entries_.size() == index) {
+        Entry e{file_name(index), file.read_double_attribute("time"), step,
+                file.shape("position").first, {}};
+        for (const auto& name : file.dataset_names()) {
+          if (name == "position") continue;
+          const bool integer = name == "id" || name == "body" || name == "material";
+          e.attributes.push_back({name, static_cast<int>(file.shape(name).second), integer});
+        }
+        entries_.push_back(std::move(e));
+        keep = true;
+      }
+    }
+    if (!keep) fs::remove(path);
+  }
+  write_index();
+}
+
+namespace {
+const char* attribute_type(int components) {
+  switch (components) {
+    case 3: return "Vector";
+    case 6: return "Tensor6";
+    case 9: return "Tensor";
+    default: return "Scalar";
+  }
+}
+}  // namespace
+
+void SnapshotWriter::write_index() const {
+  std::string xml =
+      "<?xml version=\"1.0\" ?>\n"
+      "<Xdmf Version=\"3.0\">\n <Domain>\n"
+      "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& e : entries_) {
+    xml += fmt::format("   <Grid Name=\"step_{}\" GridType=\"Uniform\">\n", e.step);
+    xml += fmt::format("    <Time Value=\"{:.17g}\"/>\n", e.time);
+    xml += fmt::format(
+        "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\"/>\n",
+        e.particles);
+    xml += fmt::format(
+        "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"{} 3\" NumberType=\"Float\" "
+        "Precision=\"8\" Format=\"HDF\">{}:/position</DataItem>\n    </Geometry>\n",
+        e.particles, e.file);
+    for (const auto& a : e.attributes) {
+      const std::string dims =
+          a.components == 1 ? fmt::format("{}", e.particles) : fmt::format("{} {}", e.particles, a.components);
+      xml += fmt::format(
+          "    <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">\n     <DataItem "
+          "Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" Format=\"HDF\">{}:/{}</DataItem>\n"
+          "    </Attribute>\n",
+          a.name, attribute_type(a.components), dims, a.integer ? "Int" : "Float", e.file, a.name);
+    }
+    xml += "   </Grid>\n";
+  }
+  xml += "  </Grid>\n </Domain>\n</Xdmf>\n";
+  const fs::path tmp = directory_ / "particles.xmf.tmp";
+  {
+    std::ofstream out(tmp);
+    out << xml;
+  }
+  fs::rename(tmp, directory_ / "particles.xmf");
+}
+
+}  // namespace hvi::mpm::io

@@ -1,0 +1,45 @@
+#pragma once
+// Particle snapshots for ParaView and Python: one HDF5 file per snapshot
+// (DIR/snapshots/particles_NNNNNN.h5, one dataset per field, particles in id order) and an XDMF
+// index DIR/particles.xmf that ParaView opens as a time series. Only fields that exist in the run
+// are written, plus a few derived ones (density, pressure, von Mises stress, volume ratio).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mpm/solver.hpp"
+
+namespace hvi::mpm::io {
+
+class SnapshotWriter {
+ public:
+  explicit SnapshotWriter(std::filesystem::path run_directory);
+
+  // Writes the solver's current state as snapshot number `count()` and updates the index.
+  void write(const Solver& solver);
+  std::size_t count() const { return entries_.size(); }
+
+  // For a resumed run: re-reads the snapshots written up to `last_step` and deletes later ones.
+  void resume(std::int64_t last_step);
+
+  static std::string file_name(std::size_t index);
+
+ private:
+  struct Attribute {
+    std::string name;
+    int components;       // 1, 3, 6 or 9
+    bool integer;
+  };
+  struct Entry {
+    std::string file;     // relative to the run directory
+    double time;
+    std::int64_t step;
+    std::size_t particles;
+    std::vector<Attribute> attributes;
+  };
+  void write_index() const;
+  std::filesystem::path directory_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace hvi::mpm::io

@@ -1,0 +1,41 @@
+#pragma once
+// Particles binned by the grid block that owns their stencil's lowest node. A particle's stencil
+// (2 nodes per axis for linear, 3 for GIMP) starts in its owner block and reaches at most one block
+// further along each axis, so owner blocks whose coordinates have the same parity on every axis
+// (one of 8 "colours") never write to the same node. Scattering colour by colour, blocks of one
+// colour in parallel and particles of a block in bin order, needs no locks or atomics and adds
+// every node's contributions in the same order for any thread count: bitwise-reproducible results.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "mpm/grid.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/shape_functions.hpp"
+
+namespace hvi::mpm {
+
+struct ParticleBins {
+  std::vector<std::uint64_t> key;    // per particle: key of its owner block
+  std::vector<std::uint32_t> order;  // particle indices grouped by owner block, stable
+  std::vector<std::uint32_t> offset; // owner block b holds order[offset[b], offset[b+1])
+  // Owner block b's blocks at b + (dx, dy, dz), dx, dy, dz in {0, 1}, index dx | dy<<1 | dz<<2.
+  std::vector<std::array<std::uint32_t, 8>> neighbours;
+  std::array<std::vector<std::uint32_t>, 8> colour;  // owner blocks by parity of coordinates
+  std::size_t owner_count() const { return neighbours.size(); }
+  std::size_t bytes() const;
+};
+
+// Per-particle GIMP half-width in metres, or nullptr for linear shape functions.
+struct StencilSource {
+  ShapeFunction shape = ShapeFunction::linear;
+  const std::vector<double>* half_width = nullptr;
+};
+
+// Rebuilds the grid's active blocks for this step and bins the particles. Owner blocks get the
+// block indices 0 .. owner_count()-1 in order of first appearance in the particle arrays; the
+// blocks they reach and the blocks in `extra_keys` follow.
+void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid& grid,
+                   ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys);
+
+}  // namespace hvi::mpm

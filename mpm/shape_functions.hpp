@@ -1,0 +1,78 @@
+#pragma once
+// Grid shape functions in one dimension, in cell units: s is the particle coordinate measured
+// from the grid origin in cells, node i sits at s = i. A 3D weight is the tensor product
+// N_I(x) = N_i(s_x) N_j(s_y) N_k(s_z); its gradient carries 1/h.
+//
+// Each shape function has a fixed stencil `width` of nodes per axis starting at `lowest(s, a)`;
+// weights outside the support come out as exact zeros.
+#include <cmath>
+
+namespace hvi::mpm {
+
+enum class ShapeFunction { linear, gimp };
+
+// Standard MPM hat functions: N = 1 - |s - i| for |s - i| < 1 (the paper's choice, Sec. 2.3).
+struct LinearShape {
+  static constexpr int width = 2;
+  static int lowest(double s, double /*half_width*/) { return static_cast<int>(std::floor(s)); }
+  static void weights(double s, int i0, double /*half_width*/, double* N, double* dN) {
+    const double r = s - i0;
+    N[0] = 1.0 - r;
+    N[1] = r;
+    dN[0] = -1.0;
+    dN[1] = 1.0;
+  }
+};
+
+// uGIMP (Bardenhagen & Kober 2004): the hat function convolved with the particle's
+// characteristic function of half-width a (in cells, a <= 1/2, fixed at its initial value).
+// With d = s - i:
+//   |d| < a          N = 1 - (d^2 + a^2) / (2a)
+//   a <= |d| < 1-a   N = 1 - |d|
+//   1-a <= |d| < 1+a N = (1 + a - |d|)^2 / (4a)
+// The support 1 + a <= 3/2 spans at most three nodes per axis.
+struct GimpShape {
+  static constexpr int width = 3;
+  static int lowest(double s, double a) { return static_cast<int>(std::floor(s - a)); }
+  static void weights(double s, int i0, double a, double* N, double* dN) {
+    for (int k = 0; k < width; ++k) {
+      const double d = s - (i0 + k);
+      const double ad = std::fabs(d);
+      const double sgn = d < 0.0 ? -1.0 : 1.0;
+      if (ad < a) {
+        N[k] = 1.0 - (d * d + a * a) / (2.0 * a);
+        dN[k] = -d / a;
+      } else if (ad < 1.0 - a) {
+        N[k] = 1.0 - ad;
+        dN[k] = -sgn;
+      } else if (ad < 1.0 + a) {
+        const double u = 1.0 + a - ad;
+        N[k] = u * u / (4.0 * a);
+        dN[k] = -sgn * u / (2.0 * a);
+      } else {
+        N[k] = 0.0;
+        dN[k] = 0.0;
+      }
+    }
+  }
+};
+
+// The 3D stencil of one particle: lowest node per axis and the 1D weights and derivatives
+// (derivatives in 1/cell; multiply by 1/h for 1/m).
+template <class Shape>
+struct Stencil {
+  static constexpr int width = Shape::width;
+  int base[3];
+  double N[3][width];
+  double dN[3][width];
+
+  // s: particle position in cell units; a: GIMP half-width in cells (ignored for linear).
+  void evaluate(const double s[3], double a) {
+    for (int d = 0; d < 3; ++d) {
+      base[d] = Shape::lowest(s[d], a);
+      Shape::weights(s[d], base[d], a, N[d], dN[d]);
+    }
+  }
+};
+
+}  // namespace hvi::mpm

@@ -1,0 +1,322 @@
+#include "mpm/solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "mpm/grid_update.hpp"
+
+namespace hvi::mpm {
+
+Solver::Solver(GridGeometry grid, SolverSettings settings,
+               std::vector<std::unique_ptr<Material>> materials, std::vector<std::string> body_names,
+               std::vector<GridBoundary> boundaries)
+    : geometry_(grid),
+      settings_(settings),
+      materials_(std::move(materials)),
+      body_names_(std::move(body_names)),
+      boundaries_(std::move(boundaries)),
+      grid_(grid) {}
+
+TransferContext Solver::transfer_context() const {
+  return {settings_.shape, half_width_, settings_.flip, dt_};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Set-up
+
+void Solver::initialise() {
+  for (const auto& m : materials_) m->declare_fields(particles_);
+  if (settings_.shape == ShapeFunction::gimp) {
+    // uGIMP: a particle's domain is the cube of its initial volume, half-width a = V0^(1/3) / 2.
+    half_width_ = &particles_.add_field("gimp_half_width", FieldKind::scalar, "m", 0.0, false);
+    for (std::size_t p = 0; p < particles_.size(); ++p) {
+      (*half_width_)[p] = 0.5 * std::cbrt(particles_.volume0[p]);
+      if ((*half_width_)[p] > 0.5 * geometry_.cell_size * (1.0 + 1e-12))
+        throw SolverError(fmt::format(
+            "GIMP needs particles no larger than a cell: particle {} (body '{}') has size {:.4g} m "
+            "but the cell is {:.4g} m; use more particles per cell",
+            particles_.id[p], body_names_.at(particles_.body[p]), 2 * (*half_width_)[p],
+            geometry_.cell_size));
+    }
+  }
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    if (!geometry_.contains(&particles_.position[3 * p]))
+      throw SolverError(fmt::format("particle {} of body '{}' at ({:.6g}, {:.6g}, {:.6g}) m lies "
+                                    "outside the grid",
+                                    particles_.id[p], body_names_.at(particles_.body[p]),
+                                    particles_.position[3 * p], particles_.position[3 * p + 1],
+                                    particles_.position[3 * p + 2]));
+  bin_particles();
+  sort_by_material_and_block();
+  for (std::size_t m = 0; m < materials_.size(); ++m) materials_[m]->initialise(particles_, ranges_[m]);
+  double signal = 0.0;
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    signal = std::max(signal, materials_[m]->max_signal_speed(particles_, ranges_[m]));
+  max_signal_speed_ = signal;
+  choose_time_step();
+}
+
+void Solver::restore(const SolverState& state) {
+  for (const auto& m : materials_) m->declare_fields(particles_);
+  if (settings_.shape == ShapeFunction::gimp)
+    half_width_ = &particles_.field("gimp_half_width");
+  compute_material_ranges();
+  state_ = state;
+}
+
+void Solver::compute_material_ranges() {
+  ranges_.assign(materials_.size(), {});
+  std::vector<std::size_t> count(materials_.size(), 0);
+  for (const auto m : particles_.material) ++count.at(m);
+  std::size_t begin = 0;
+  for (std::size_t m = 0; m < materials_.size(); ++m) {
+    ranges_[m] = {begin, begin + count[m]};
+    begin += count[m];
+  }
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const auto& r = ranges_[particles_.material[p]];
+    if (p < r.begin || p >= r.end)
+      throw std::logic_error("particles are not grouped by material");
+  }
+}
+
+// Reorders particle arrays by material (so each material is one contiguous group) and, inside a
+// material, by owner block (so a block's particles are close in memory). Uses the current bins.
+void Solver::sort_by_material_and_block() {
+  const std::size_t n = particles_.size();
+  std::vector<std::size_t> start(materials_.size() + 1, 0);
+  for (const auto m : particles_.material) ++start[m + 1];
+  for (std::size_t m = 0; m < materials_.size(); ++m) start[m + 1] += start[m];
+  std::vector<std::uint32_t> order(n);
+  for (const auto p : bins_.order) order[start[particles_.material[p]]++] = p;
+  particles_.reorder(order);
+  compute_material_ranges();
+  bin_particles();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The step
+
+void Solver::step(double max_dt) {
+  dt_ = std::min(state_.next_dt, max_dt);
+  bin_particles();
+  if (settings_.reorder_interval > 0 && state_.step % settings_.reorder_interval == 0 && state_.step > 0) {
+    auto t = timer_.scope("sort particles");
+    sort_by_material_and_block();
+  }
+  switch (settings_.scheme) {
+    case UpdateScheme::musl:
+      particles_to_grid(Scatter::mass_momentum_force);
+      couple(GridStage::mass_momentum);
+      couple(GridStage::force);
+      update_grid(true, true);
+      grid_to_particles(true);  // and remap the updated velocities to the grid
+      couple(GridStage::remapped);
+      update_remapped_grid();
+      compute_velocity_gradient(NodalVelocity::remapped);
+      update_stress();
+      break;
+    case UpdateScheme::usl:
+      particles_to_grid(Scatter::mass_momentum_force);
+      couple(GridStage::mass_momentum);
+      couple(GridStage::force);
+      update_grid(true, true);
+      grid_to_particles(false);
+      compute_velocity_gradient(NodalVelocity::end);
+      update_stress();
+      break;
+    case UpdateScheme::usf:
+      particles_to_grid(Scatter::mass_momentum);
+      couple(GridStage::mass_momentum);
+      update_grid(true, false);
+      compute_velocity_gradient(NodalVelocity::start);
+      update_stress();
+      particles_to_grid(Scatter::force);
+      couple(GridStage::force);
+      update_grid(false, true);
+      grid_to_particles(false);
+      break;
+  }
+  update_positions();
+  state_.time += dt_;
+  state_.step += 1;
+  remove_escaped_particles();
+  choose_time_step();
+}
+
+void Solver::bin_particles() {
+  auto t = timer_.scope("bin particles");
+  std::vector<std::uint64_t> extra;
+  for (const auto* c : couplings_) c->request_blocks(extra);
+  mpm::bin_particles(particles_, {settings_.shape, half_width_}, grid_, bins_, extra);
+}
+
+void Solver::particles_to_grid(Scatter what) {
+  auto t = timer_.scope("particles to grid");
+  mpm::particles_to_grid(what, particles_, bins_, grid_, transfer_context());
+}
+
+void Solver::couple(GridStage stage) {
+  if (couplings_.empty()) return;
+  auto t = timer_.scope("coupling");
+  for (auto* c : couplings_) c->add_to_grid(grid_, stage, state_.time, dt_);
+}
+
+void Solver::update_grid(bool velocity, bool increment) {
+  auto t = timer_.scope("grid update");
+  update_nodes(grid_, velocity, increment, dt_);
+  apply_grid_conditions(grid_, boundaries_);
+  if (increment)
+    for (auto* c : couplings_) c->take_from_grid(grid_, state_.time, dt_);
+}
+
+void Solver::update_remapped_grid() {
+  auto t = timer_.scope("grid update");
+  update_remapped(grid_);
+  apply_grid_conditions(grid_, boundaries_);
+}
+
+void Solver::grid_to_particles(bool remap) {
+  auto t = timer_.scope("grid to particles");
+  mpm::grid_to_particles(particles_, bins_, grid_, transfer_context(), remap);
+}
+
+void Solver::compute_velocity_gradient(NodalVelocity which) {
+  auto t = timer_.scope("velocity gradient");
+  mpm::velocity_gradient(particles_, bins_, grid_, transfer_context(), which);
+}
+
+void Solver::update_stress() {
+  const StressContext context{dt_, state_.time, state_.step, &timer_};
+  double signal = 0.0;
+  for (std::size_t m = 0; m < materials_.size(); ++m) {
+    if (ranges_[m].size() == 0) continue;
+    auto t = timer_.scope("stress: " + materials_[m]->name());
+    const StressUpdate r = materials_[m]->update_stress(particles_, ranges_[m], context);
+    if (r.bad_particle >= 0) fail(static_cast<std::size_t>(r.bad_particle), r.problem);
+    signal = std::max(signal, r.max_signal_speed);
+  }
+  max_signal_speed_ = signal;
+}
+
+void Solver::update_positions() {
+  auto t = timer_.scope("update positions");
+  const auto n = static_cast<std::int64_t>(particles_.size());
+  double* x = particles_.position.data();
+  const double* vg = particles_.grid_velocity.data();
+  const double dt = dt_;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < 3 * n; ++i) x[i] += dt * vg[i];
+}
+
+void Solver::remove_escaped_particles() {
+  auto t = timer_.scope("remove escaped");
+  const std::size_t n = particles_.size();
+  std::vector<std::uint8_t> out(n, 0);
+  std::int64_t first_nonfinite = -1;
+  std::size_t escaped = 0;
+#pragma omp parallel for schedule(static) reduction(+ : escaped)
+  for (std::int64_t p = 0; p < static_cast<std::int64_t>(n); ++p) {
+    const double* x = &particles_.position[3 * p];
+    if (!geometry_.contains(x)) {
+      out[p] = 1;
+      ++escaped;
+    }
+  }
+  if (escaped == 0) return;
+  for (std::size_t p = 0; p < n; ++p) {
+    if (!out[p]) continue;
+    const double* x = &particles_.position[3 * p];
+    if (!std::isfinite(x[0] + x[1] + x[2])) {
+      first_nonfinite = static_cast<std::int64_t>(p);
+      break;
+    }
+  }
+  if (first_nonfinite >= 0) fail(static_cast<std::size_t>(first_nonfinite), "non-finite position");
+  auto& r = state_.removed;
+  for (std::size_t p = 0; p < n; ++p) {
+    if (!out[p]) continue;
+    const double m = particles_.mass[p];
+    const double* v = &particles_.velocity[3 * p];
+    r.particles += 1;
+    r.mass += m;
+    r.kinetic += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    r.internal += m * particles_.internal_energy[p];
+    for (int d = 0; d < 3; ++d) r.momentum[d] += m * v[d];
+    removal_events_.push_back({particles_.id[p], particles_.body[p], particles_.material[p],
+                               {particles_.position[3 * p], particles_.position[3 * p + 1],
+                                particles_.position[3 * p + 2]},
+                               {v[0], v[1], v[2]}, m, state_.time, state_.step});
+  }
+  particles_.erase_flagged(out);
+  compute_material_ranges();
+}
+
+void Solver::choose_time_step() {
+  double dt = settings_.max_time_step;
+  if (max_signal_speed_ > 0.0) dt = std::min(dt, settings_.cfl * geometry_.cell_size / max_signal_speed_);
+  for (const auto* c : couplings_) dt = std::min(dt, c->stable_time_step());
+  if (!std::isfinite(dt) || dt <= 0.0)
+    throw SolverError(fmt::format("step {}, t = {:.6g} s: no finite time step (max signal speed {:.6g} m/s)",
+                                  state_.step, state_.time, max_signal_speed_));
+  state_.next_dt = dt;
+}
+
+std::vector<RemovalEvent> Solver::take_removal_events() {
+  std::vector<RemovalEvent> events;
+  events.swap(removal_events_);
+  return events;
+}
+
+void Solver::fail(std::size_t p, const std::string& problem) const {
+  const double* x = &particles_.position[3 * p];
+  throw SolverError(fmt::format(
+      "step {}, t = {:.6g} s: particle {} (body '{}', material '{}') at ({:.6g}, {:.6g}, {:.6g}) m: {}",
+      state_.step, state_.time, particles_.id[p], body_names_.at(particles_.body[p]),
+      materials_.at(particles_.material[p])->name(), x[0], x[1], x[2], problem));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Diagnostics
+
+EnergyReport Solver::energy() const {
+  // Sums over fixed chunks, then over chunks in order: the same result for any thread count.
+  constexpr std::int64_t chunk = 4096;
+  const auto n = static_cast<std::int64_t>(particles_.size());
+  const std::int64_t chunks = (n + chunk - 1) / chunk;
+  std::vector<std::array<double, 6>> partial(chunks);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::array<double, 6> s{};
+    for (std::int64_t p = c * chunk; p < std::min(n, (c + 1) * chunk); ++p) {
+      const double m = particles_.mass[p];
+      const double* v = &particles_.velocity[3 * p];
+      s[0] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      s[1] += m * particles_.internal_energy[p];
+      for (int d = 0; d < 3; ++d) s[2 + d] += m * v[d];
+      s[5] += m;
+    }
+    partial[c] = s;
+  }
+  std::array<double, 6> sum{};
+  for (const auto& s : partial)
+    for (int k = 0; k < 6; ++k) sum[k] += s[k];
+  EnergyReport e;
+  e.kinetic = sum[0];
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    e.dissipated += materials_[m]->dissipated_energy(particles_, ranges_[m]);
+  e.internal = sum[1] - e.dissipated;
+  e.momentum = {sum[2], sum[3], sum[4]};
+  e.mass = sum[5];
+  const auto& r = state_.removed;
+  e.removed = r.kinetic + r.internal;
+  e.removed_momentum = r.momentum;
+  e.removed_mass = r.mass;
+  return e;
+}
+
+std::size_t Solver::bytes() const { return particles_.bytes() + grid_.bytes() + bins_.bytes(); }
+
+}  // namespace hvi::mpm

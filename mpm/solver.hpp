@@ -1,0 +1,157 @@
+#pragma once
+// The explicit MPM solver: one step of the update schemes MUSL (default), USL and USF (the
+// paper's Sec. 2.3 flowchart) as a short list of named phases. Particles, grid, materials and
+// boundary conditions are owned here; coupled models enter through GridCoupling hooks.
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mpm/boundary.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/grid_coupling.hpp"
+#include "mpm/material.hpp"
+#include "mpm/particle_bins.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/phase_timer.hpp"
+#include "mpm/shape_functions.hpp"
+#include "mpm/transfers.hpp"
+#include "mpm/types.hpp"
+
+namespace hvi::mpm {
+
+enum class UpdateScheme {
+  musl,  // modified update stress last: velocities remapped to the grid before the strain rate
+  usl,   // update stress last
+  usf,   // update stress first (the paper's flowchart)
+};
+
+struct SolverSettings {
+  ShapeFunction shape = ShapeFunction::linear;
+  UpdateScheme scheme = UpdateScheme::musl;
+  double flip = 1.0;  // FLIP fraction of the particle velocity update; 1 = FLIP (paper), 0 = PIC
+  double cfl = 0.5;   // dt = cfl h / max_p (c_p + |v_p|)
+  double max_time_step = std::numeric_limits<double>::infinity();
+  int reorder_interval = 16;  // steps between sorting particle arrays by material and block
+};
+
+// Everything that left the domain, so that nothing is lost silently.
+struct RemovedMaterial {
+  std::int64_t particles = 0;
+  double mass = 0.0;      // kg
+  double kinetic = 0.0;   // J, at the moment of removal
+  double internal = 0.0;  // J
+  Vec3 momentum{};        // kg m/s
+};
+
+// One particle leaving the grid.
+struct RemovalEvent {
+  std::int64_t id, body, material;
+  Vec3 position, velocity;
+  double mass, time;
+  std::int64_t step;
+};
+
+struct EnergyReport {
+  double kinetic = 0.0;     // sum 1/2 m v^2, J
+  double internal = 0.0;    // recoverable (strain) part of the internal energy, J
+  double dissipated = 0.0;  // plastic work and viscous heating, J
+  double removed = 0.0;     // kinetic + internal energy carried out of the domain, J
+  double total() const { return kinetic + internal + dissipated + removed; }
+  Vec3 momentum{};          // of the particles in the domain, kg m/s
+  Vec3 removed_momentum{};
+  double mass = 0.0, removed_mass = 0.0;
+};
+
+// A run that cannot continue: names the particle, body, material, position, time and step.
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The restartable scalar state of a run (particles are saved separately).
+struct SolverState {
+  double time = 0.0;
+  std::int64_t step = 0;
+  double next_dt = 0.0;
+  RemovedMaterial removed;
+};
+
+class Solver {
+ public:
+  Solver(GridGeometry grid, SolverSettings settings, std::vector<std::unique_ptr<Material>> materials,
+         std::vector<std::string> body_names, std::vector<GridBoundary> boundaries);
+
+  Particles& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }
+  const std::vector<std::string>& body_names() const { return body_names_; }
+  const SolverSettings& settings() const { return settings_; }
+  const SparseGrid& grid() const { return grid_; }
+  void add_coupling(GridCoupling* coupling) { couplings_.push_back(coupling); }
+
+  // Before the first step: groups particles by material, declares and initialises material state,
+  // and chooses the first time step. With `restored`, the particles and state come from a
+  // checkpoint and are taken as they are (same order, same next time step).
+  void initialise();
+  void restore(const SolverState& state);
+
+  // Advances by min(next time step, max_dt).
+  void step(double max_dt = std::numeric_limits<double>::infinity());
+
+  double time() const { return state_.time; }
+  std::int64_t step_count() const { return state_.step; }
+  double next_time_step() const { return state_.next_dt; }
+  const SolverState& state() const { return state_; }
+  const RemovedMaterial& removed() const { return state_.removed; }
+  // Removal events since the last call.
+  std::vector<RemovalEvent> take_removal_events();
+
+  EnergyReport energy() const;
+  PhaseTimer& timer() { return timer_; }
+  const std::vector<ParticleRange>& material_ranges() const { return ranges_; }
+  // Bytes held by particles, grid and bins now.
+  std::size_t bytes() const;
+
+ private:
+  // Phases of a step.
+  void bin_particles();
+  void particles_to_grid(Scatter what);
+  void couple(GridStage stage);
+  void update_grid(bool velocity, bool increment);
+  void update_remapped_grid();
+  void grid_to_particles(bool remap);
+  void compute_velocity_gradient(NodalVelocity which);
+  void update_stress();
+  void update_positions();
+  void remove_escaped_particles();
+  void choose_time_step();
+
+  void sort_by_material_and_block();
+  void compute_material_ranges();
+  [[noreturn]] void fail(std::size_t particle, const std::string& problem) const;
+  TransferContext transfer_context() const;
+
+  GridGeometry geometry_;
+  SolverSettings settings_;
+  std::vector<std::unique_ptr<Material>> materials_;
+  std::vector<std::string> body_names_;
+  std::vector<GridBoundary> boundaries_;
+  std::vector<GridCoupling*> couplings_;
+
+  Particles particles_;
+  SparseGrid grid_;
+  ParticleBins bins_;
+  std::vector<ParticleRange> ranges_;
+  std::vector<double>* half_width_ = nullptr;  // GIMP only
+
+  SolverState state_;
+  double dt_ = 0.0;  // of the step in progress
+  double max_signal_speed_ = 0.0;
+  std::vector<RemovalEvent> removal_events_;
+  PhaseTimer timer_;
+};
+
+}  // namespace hvi::mpm

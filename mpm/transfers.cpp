@@ -1,0 +1,246 @@
+#include "mpm/transfers.hpp"
+
+#include <cstdint>
+
+#include "mpm/types.hpp"
+
+namespace hvi::mpm {
+namespace {
+
+// The stencil of one particle, resolved to node addresses inside its owner block's neighbourhood.
+template <class Shape>
+struct NodeStencil {
+  static constexpr int W = Shape::width;
+  double N[3][W], dN[3][W];
+  int node_offset[3][W];  // local node index contribution per axis
+  int block_bit[3][W];    // neighbour bit per axis
+
+  void evaluate(const double* x, const GridGeometry& g, double inv_h, double a,
+                const std::array<int, 3>& block_origin) {
+    for (int d = 0; d < 3; ++d) {
+      const double s = (x[d] - g.origin[d]) * inv_h;
+      const int base = Shape::lowest(s, a);
+      Shape::weights(s, base, a, N[d], dN[d]);
+      static constexpr int stride[3] = {1, SparseGrid::block_edge,
+                                        SparseGrid::block_edge * SparseGrid::block_edge};
+      for (int k = 0; k < W; ++k) {
+        const int l = base - block_origin[d] + k;  // 0 .. 2*edge-1
+        block_bit[d][k] = (l / SparseGrid::block_edge) << d;
+        node_offset[d][k] = (l % SparseGrid::block_edge) * stride[d];
+      }
+    }
+  }
+
+  // f(node, weight, gradient[3]) for every node of the stencil; gradient in 1/m.
+  template <class Node, class F>
+  void for_each(Node* const* blocks, double inv_h, F&& f) const {
+    for (int kz = 0; kz < W; ++kz)
+      for (int ky = 0; ky < W; ++ky) {
+        const double nyz = N[1][ky] * N[2][kz];
+        const double dy = dN[1][ky] * N[2][kz] * inv_h, dz = N[1][ky] * dN[2][kz] * inv_h;
+        const int bit_yz = block_bit[1][ky] | block_bit[2][kz];
+        const int off_yz = node_offset[1][ky] + node_offset[2][kz];
+        for (int kx = 0; kx < W; ++kx) {
+          Node* node = blocks[block_bit[0][kx] | bit_yz] + (node_offset[0][kx] + off_yz);
+          const double grad[3] = {dN[0][kx] * nyz * inv_h, N[0][kx] * dy, N[0][kx] * dz};
+          f(*node, N[0][kx] * nyz, grad);
+        }
+      }
+  }
+};
+
+struct Setup {
+  const GridGeometry& g;
+  double inv_h;
+  const double* half_width;
+  double a(std::size_t p) const { return half_width ? half_width[p] * inv_h : 0.0; }
+};
+
+template <class Shape, Scatter What>
+void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s) {
+  constexpr bool mass = What != Scatter::force;
+  constexpr bool momentum = What != Scatter::force;
+  constexpr bool force = What == Scatter::mass_momentum_force || What == Scatter::force;
+  for (const auto& colour : bins.colour) {
+    const auto count = static_cast<std::int64_t>(colour.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < count; ++i) {
+      const std::uint32_t b = colour[i];
+      GridNode* blocks[8];
+      for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
+      const auto origin = grid.block_origin(b);
+      NodeStencil<Shape> st;
+      for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+        const std::uint32_t p = bins.order[k];
+        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p), origin);
+        const double m = P.mass[p];
+        const double* v = &P.velocity[3 * p];
+        const double mv[3] = {m * v[0], m * v[1], m * v[2]};
+        double vs[6] = {};  // V_p sigma_p
+        if constexpr (force) {
+          const double V = P.volume[p];
+          for (int c = 0; c < 6; ++c) vs[c] = V * P.stress[6 * p + c];
+        }
+        st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double* g) {
+          if constexpr (mass) n.mass += w * m;
+          if constexpr (momentum) {
+            n.p[0] += w * mv[0];
+            n.p[1] += w * mv[1];
+            n.p[2] += w * mv[2];
+          }
+          if constexpr (force) {
+            n.f[0] -= vs[sym::xx] * g[0] + vs[sym::xy] * g[1] + vs[sym::xz] * g[2];
+            n.f[1] -= vs[sym::xy] * g[0] + vs[sym::yy] * g[1] + vs[sym::yz] * g[2];
+            n.f[2] -= vs[sym::xz] * g[0] + vs[sym::yz] * g[1] + vs[sym::zz] * g[2];
+          }
+        });
+      }
+    }
+  }
+}
+
+// One particle's velocity update; with Remap also its share of the remapped momentum.
+template <class Shape, bool Remap, class Blocks>
+void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks, const std::array<int, 3>& origin,
+                        const Setup& s, double flip, NodeStencil<Shape>& st) {
+  st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p), origin);
+  double dv[3] = {0, 0, 0}, vg[3] = {0, 0, 0};
+  st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
+    for (int d = 0; d < 3; ++d) {
+      dv[d] += w * n.f[d];
+      vg[d] += w * (n.p[d] + n.f[d]);
+    }
+  });
+  double* v = &P.velocity[3 * p];
+  for (int d = 0; d < 3; ++d) {
+    v[d] = flip * (v[d] + dv[d]) + (1.0 - flip) * vg[d];
+    P.grid_velocity[3 * p + d] = vg[d];
+  }
+  if constexpr (Remap) {
+    const double m = P.mass[p];
+    const double mv[3] = {m * v[0], m * v[1], m * v[2]};
+    st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
+      n.q[0] += w * mv[0];
+      n.q[1] += w * mv[1];
+      n.q[2] += w * mv[2];
+    });
+  }
+}
+
+template <class Shape>
+void gather_velocity(Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
+                     double flip, bool remap) {
+  if (remap) {
+    // Scatters too: colour by colour, like particles_to_grid.
+    for (const auto& colour : bins.colour) {
+      const auto count = static_cast<std::int64_t>(colour.size());
+#pragma omp parallel for schedule(dynamic, 1)
+      for (std::int64_t i = 0; i < count; ++i) {
+        const std::uint32_t b = colour[i];
+        GridNode* blocks[8];
+        for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
+        const auto origin = grid.block_origin(b);
+        NodeStencil<Shape> st;
+        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
+          gather_velocity_of<Shape, true>(P, bins.order[k], blocks, origin, s, flip, st);
+      }
+    }
+    return;
+  }
+  const auto owners = static_cast<std::int64_t>(bins.owner_count());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t b = 0; b < owners; ++b) {
+    const GridNode* blocks[8];
+    for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
+    const auto origin = grid.block_origin(static_cast<std::uint32_t>(b));
+    NodeStencil<Shape> st;
+    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
+      gather_velocity_of<Shape, false>(P, bins.order[k], blocks, origin, s, flip, st);
+  }
+}
+
+template <class Shape, NodalVelocity Which>
+void gather_gradient(Particles& P, const ParticleBins& bins, const SparseGrid& grid, const Setup& s) {
+  const auto owners = static_cast<std::int64_t>(bins.owner_count());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t b = 0; b < owners; ++b) {
+    const GridNode* blocks[8];
+    for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
+    const auto origin = grid.block_origin(static_cast<std::uint32_t>(b));
+    NodeStencil<Shape> st;
+    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+      const std::uint32_t p = bins.order[k];
+      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p), origin);
+      double L[9] = {};
+      st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
+        double v[3];
+        for (int d = 0; d < 3; ++d) {
+          if constexpr (Which == NodalVelocity::start) v[d] = n.p[d];
+          if constexpr (Which == NodalVelocity::end) v[d] = n.p[d] + n.f[d];
+          if constexpr (Which == NodalVelocity::remapped) v[d] = n.q[d];
+        }
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) L[3 * i + j] += v[i] * g[j];
+      });
+      double* Lp = &P.velocity_gradient[9 * p];
+      for (int c = 0; c < 9; ++c) Lp[c] = L[c];
+    }
+  }
+}
+
+Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
+  return {grid.geometry(), 1.0 / grid.geometry().cell_size,
+          c.half_width ? c.half_width->data() : nullptr};
+}
+
+template <class Shape>
+void scatter_dispatch(Scatter what, const Particles& P, const ParticleBins& bins, SparseGrid& grid,
+                      const Setup& s) {
+  switch (what) {
+    case Scatter::mass_momentum_force: scatter<Shape, Scatter::mass_momentum_force>(P, bins, grid, s); break;
+    case Scatter::mass_momentum: scatter<Shape, Scatter::mass_momentum>(P, bins, grid, s); break;
+    case Scatter::force: scatter<Shape, Scatter::force>(P, bins, grid, s); break;
+  }
+}
+
+}  // namespace
+
+void particles_to_grid(Scatter what, const Particles& particles, const ParticleBins& bins,
+                       SparseGrid& grid, const TransferContext& context) {
+  const Setup s = make_setup(grid, context);
+  if (context.shape == ShapeFunction::linear)
+    scatter_dispatch<LinearShape>(what, particles, bins, grid, s);
+  else
+    scatter_dispatch<GimpShape>(what, particles, bins, grid, s);
+}
+
+void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                       const TransferContext& context, bool remap) {
+  const Setup s = make_setup(grid, context);
+  if (context.shape == ShapeFunction::linear)
+    gather_velocity<LinearShape>(particles, bins, grid, s, context.flip, remap);
+  else
+    gather_velocity<GimpShape>(particles, bins, grid, s, context.flip, remap);
+}
+
+void velocity_gradient(Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
+                       const TransferContext& context, NodalVelocity which) {
+  const Setup s = make_setup(grid, context);
+  const bool linear = context.shape == ShapeFunction::linear;
+  switch (which) {
+    case NodalVelocity::start:
+      if (linear) gather_gradient<LinearShape, NodalVelocity::start>(particles, bins, grid, s);
+      else gather_gradient<GimpShape, NodalVelocity::start>(particles, bins, grid, s);
+      break;
+    case NodalVelocity::end:
+      if (linear) gather_gradient<LinearShape, NodalVelocity::end>(particles, bins, grid, s);
+      else gather_gradient<GimpShape, NodalVelocity::end>(particles, bins, grid, s);
+      break;
+    case NodalVelocity::remapped:
+      if (linear) gather_gradient<LinearShape, NodalVelocity::remapped>(particles, bins, grid, s);
+      else gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s);
+      break;
+  }
+}
+
+}  // namespace hvi::mpm

@@ -1,0 +1,46 @@
+#pragma once
+// Particle <-> grid transfers, the kernels of every MPM step. Weights are recomputed in each pass
+// from the start-of-step positions (cheaper than storing them). Scatters run colour by colour over
+// owner blocks (see particle_bins.hpp); gathers run over owner blocks in any order.
+#include "mpm/grid.hpp"
+#include "mpm/particle_bins.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/shape_functions.hpp"
+
+namespace hvi::mpm {
+
+struct TransferContext {
+  ShapeFunction shape = ShapeFunction::linear;
+  const std::vector<double>* half_width = nullptr;  // GIMP particle half-width, m
+  double flip = 1.0;  // FLIP fraction of the particle velocity update (1 FLIP, 0 PIC)
+  double dt = 0.0;
+};
+
+enum class Scatter {
+  mass_momentum_force,  // m_I = sum N m_p; p_I = sum N m_p v_p; f_I = -sum V_p sigma_p grad N
+  mass_momentum,
+  force,
+};
+
+void particles_to_grid(Scatter what, const Particles& particles, const ParticleBins& bins,
+                       SparseGrid& grid, const TransferContext& context);
+
+// Particle velocity from the nodal velocity v_I and increment dv_I (after update_grid):
+//   v_p <- flip (v_p + sum N dv_I) + (1 - flip) sum N (v_I + dv_I),
+// and grid_velocity_p = sum N (v_I + dv_I), the velocity the particle moves with.
+// With `remap` (MUSL), the same pass scatters the updated momentum: q_I = sum N m_p v_p.
+void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                       const TransferContext& context, bool remap);
+
+// Which nodal velocity the velocity gradient is taken from.
+enum class NodalVelocity {
+  start,     // p: v_I at the start of the step (USF)
+  end,       // p + f: v_I + dv_I (USL)
+  remapped,  // q: velocity remapped from the updated particle velocities (MUSL)
+};
+
+// L_p = sum_I v_I (x) grad N_I(x_p), at the start-of-step positions.
+void velocity_gradient(Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
+                       const TransferContext& context, NodalVelocity which);
+
+}  // namespace hvi::mpm
