@@ -1,0 +1,97 @@
+#include "cases/driver/build_solver.hpp"
+
+#include <fmt/format.h>
+
+#include "geometry/lattice_sampler.hpp"
+#include "geometry/primitives.hpp"
+#include "mpm/elastic.hpp"
+
+namespace hvi::driver {
+
+namespace {
+
+std::unique_ptr<mpm::Material> make_material(const scene::MaterialSettings& m) {
+  // The registry of constitutive models: one entry per `strength` choice of the schema.
+  if (m.strength == "elastic")
+    return std::make_unique<mpm::LinearElastic>(m.name, m.density, m.youngs_modulus, m.poisson_ratio);
+  throw std::logic_error("no material model '" + m.strength + "'");
+}
+
+std::unique_ptr<geometry::Solid> make_solid(const scene::BodySettings& b) {
+  return std::visit(
+      [](const auto& s) -> std::unique_ptr<geometry::Solid> {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, scene::SphereShape>)
+          return std::make_unique<geometry::Sphere>(s.center, s.radius);
+        else if constexpr (std::is_same_v<T, scene::BoxShape>)
+          return std::make_unique<geometry::Box>(s.lower, s.upper);
+        else
+          return std::make_unique<geometry::Cylinder>(s.base_center, s.axis, s.radius, s.length);
+      },
+      b.shape);
+}
+
+}  // namespace
+
+std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
+  const auto& g = scene.grid;
+  mpm::GridGeometry geometry;
+  geometry.origin = g.lower;
+  geometry.cell_size = g.cell_size;
+  geometry.cells = g.cells;
+
+  mpm::SolverSettings settings;
+  settings.shape = g.shape_function == "gimp" ? mpm::ShapeFunction::gimp : mpm::ShapeFunction::linear;
+  settings.scheme = g.scheme == "usl"   ? mpm::UpdateScheme::usl
+                    : g.scheme == "usf" ? mpm::UpdateScheme::usf
+                                        : mpm::UpdateScheme::musl;
+  settings.flip = g.flip;
+  settings.cfl = g.cfl;
+  if (g.max_time_step) settings.max_time_step = *g.max_time_step;
+
+  std::vector<mpm::GridBoundary> boundaries;
+  for (const auto& b : scene.boundaries)
+    boundaries.push_back({b.axis, b.plane, b.lower_face,
+                          b.type == "fixed" ? mpm::BoundaryType::fixed : mpm::BoundaryType::symmetry});
+
+  std::vector<std::unique_ptr<mpm::Material>> materials;
+  for (const auto& m : scene.materials) materials.push_back(make_material(m));
+  std::vector<std::string> body_names;
+  for (const auto& b : scene.bodies) body_names.push_back(b.name);
+  return std::make_unique<mpm::Solver>(geometry, settings, std::move(materials), std::move(body_names),
+                                       std::move(boundaries));
+}
+
+std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver) {
+  mpm::Particles& P = solver.particles();
+  std::vector<std::size_t> counts;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const auto& body = scene.bodies[b];
+    const double density = solver.materials()[body.material]->reference_density();
+    const auto solid = make_solid(body);
+    geometry::PointSet points;
+    try {
+      points = geometry::sample_lattice(*solid, scene.grid.cell_size / body.particles_per_cell, scene.grid.lower);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("body '{}': {}", body.name, e.what()));
+    }
+    const std::size_t first = P.size(), n = points.size();
+    P.resize(first + n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t p = first + k;
+      for (int d = 0; d < 3; ++d) {
+        P.position[3 * p + d] = points.position[3 * k + d];
+        P.velocity[3 * p + d] = body.velocity[d];
+      }
+      P.volume0[p] = P.volume[p] = points.volume[k];
+      P.mass[p] = density * points.volume[k];
+      P.id[p] = static_cast<std::int64_t>(p);
+      P.body[p] = static_cast<std::int64_t>(b);
+      P.material[p] = static_cast<std::int64_t>(body.material);
+    }
+    counts.push_back(n);
+  }
+  return counts;
+}
+
+}  // namespace hvi::driver

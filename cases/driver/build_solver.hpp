@@ -1,0 +1,19 @@
+#pragma once
+// Turns a scene into a ready solver: grid, boundary conditions, materials, and bodies sampled into
+// material points. This is the one place that knows both geometry/ and mpm/.
+#include <memory>
+
+#include "cases/driver/scene.hpp"
+#include "mpm/solver.hpp"
+
+namespace hvi::driver {
+
+// The solver with its grid, conditions and materials, but no particles yet.
+std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
+
+// Samples every body into material points (lattice aligned with the grid, particles_per_cell
+// points per cell and axis, each carrying an equal share of the body's exact volume) and sets
+// their velocity. Returns the number of points per body.
+std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver);
+
+}  // namespace hvi::driver

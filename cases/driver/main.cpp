@@ -1,0 +1,132 @@
+// hvi: hypervelocity impact on honeycomb sandwich panels with the Material Point Method.
+//
+//   hvi check SCENE [--set key=value]...          validate a scene and show what it will simulate
+//   hvi run SCENE --out DIR [--threads N] [--set key=value]... [--overwrite]
+//   hvi run --resume DIR [--threads N] [--set key=value]...
+//   hvi keys                                       every scene key (Markdown)
+#include <omp.h>
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cases/driver/build_solver.hpp"
+#include "cases/driver/run.hpp"
+#include "cases/driver/scene.hpp"
+#include "cases/driver/scene_schema.hpp"
+#include "hvi_git_revision.hpp"
+
+namespace {
+
+using hvi::driver::ExitCode;
+
+void print_errors(const hvi::scene::SceneError& e) {
+  for (const auto& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.text());
+  fmt::print(stderr, "hvi: {} error{} in the scene; nothing was run or written\n", e.diagnostics().size(),
+             e.diagnostics().size() == 1 ? "" : "s");
+}
+
+int check(const std::string& path, const std::vector<std::string>& overrides) {
+  const hvi::scene::Scene scene = hvi::scene::load_scene(path, overrides);
+  auto solver = hvi::driver::make_solver(scene);
+  const auto counts = hvi::driver::add_bodies(scene, *solver);
+  solver->initialise();
+  fmt::print("{}: valid{}\n", path, scene.title.empty() ? "" : " — " + scene.title);
+  const auto& g = scene.grid;
+  fmt::print("  grid: {} x {} x {} cells of {:.4g} m from ({:.4g}, {:.4g}, {:.4g}) m; {} shape functions, {}, flip {}, cfl {}\n",
+             g.cells[0], g.cells[1], g.cells[2], g.cell_size, g.lower[0], g.lower[1], g.lower[2],
+             g.shape_function, g.scheme, g.flip, g.cfl);
+  for (const auto& b : scene.boundaries)
+    fmt::print("  boundary: {} plane {} = {:.4g} m\n", b.type, "xyz"[b.axis], b.position);
+  for (const auto& m : scene.materials)
+    fmt::print("  material '{}': {} (density {:.4g} kg/m^3, E {:.4g} Pa, nu {})\n", m.name, m.strength,
+               m.density, m.youngs_modulus, m.poisson_ratio);
+  double mass = 0;
+  for (double m : solver->particles().mass) mass += m;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    fmt::print("  body '{}': {} particles, material '{}'\n", scene.bodies[b].name, counts[b],
+               scene.materials[scene.bodies[b].material].name);
+  const double dt = solver->next_time_step();
+  fmt::print("  {} particles, {:.6g} kg; first time step {:.4g} s, about {:.0f} steps to t = {:.4g} s\n",
+             solver->particles().size(), mass, dt, scene.end_time / dt, scene.end_time);
+  fmt::print("  effects simulated: {} strength; no equation of state, damage, failure or heating\n",
+             scene.materials.empty() ? "no" : "elastic");
+  return ExitCode::success;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"hvi: hypervelocity impact on honeycomb sandwich panels (Material Point Method)"};
+  app.set_version_flag("--version", fmt::format("hvi 0.1.0 ({})", hvi::git_revision));
+  app.require_subcommand(1);
+
+  std::string scene_path, out_dir, resume_dir;
+  std::vector<std::string> overrides;
+  int threads = 0;
+  bool overwrite = false;
+
+  auto* check_cmd = app.add_subcommand("check", "Validate a scene and print what it will simulate");
+  check_cmd->add_option("scene", scene_path, "Scene file (TOML)")->required();
+  check_cmd->add_option("--set", overrides, "Override a scene key: key.path=value (repeatable)");
+
+  auto* run_cmd = app.add_subcommand("run", "Run a scene");
+  auto* scene_opt = run_cmd->add_option("scene", scene_path, "Scene file (TOML)");
+  auto* out_opt = run_cmd->add_option("--out", out_dir, "Output directory");
+  auto* resume_opt = run_cmd->add_option("--resume", resume_dir, "Continue the run in this directory from its checkpoint");
+  run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  run_cmd->add_option("--set", overrides, "Override a scene key: key.path=value (repeatable)");
+  run_cmd->add_flag("--overwrite", overwrite, "Replace a previous run in the output directory");
+  scene_opt->excludes(resume_opt);
+  out_opt->excludes(resume_opt);
+
+  auto* keys_cmd = app.add_subcommand("keys", "Print every scene key with its type, unit, range and default (Markdown)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : ExitCode::input_error;
+  }
+
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+
+  try {
+    if (*keys_cmd) {
+      fmt::print("{}", hvi::scene::markdown_reference(hvi::scene::scene_schema()));
+      return ExitCode::success;
+    }
+    if (*check_cmd) return check(scene_path, overrides);
+    if (*run_cmd) {
+      hvi::driver::RunOptions options;
+      options.threads = threads;
+      options.overwrite = overwrite;
+      options.command_line = command_line;
+      if (!resume_dir.empty()) {
+        options.resume = true;
+        options.out = resume_dir;
+        scene_path = (options.out / "scene.resolved.toml").string();
+      } else {
+        if (scene_path.empty() || out_dir.empty()) {
+          fmt::print(stderr, "hvi run: give a scene and --out DIR, or --resume DIR\n");
+          return ExitCode::input_error;
+        }
+        options.out = out_dir;
+      }
+      const hvi::scene::Scene scene = hvi::scene::load_scene(scene_path, overrides);
+      return hvi::driver::run_scene(scene, options);
+    }
+  } catch (const hvi::scene::SceneError& e) {
+    print_errors(e);
+    return ExitCode::input_error;
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "hvi: {}\n", e.what());
+    return ExitCode::input_error;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "hvi: {}\n", e.what());
+    return ExitCode::run_failed;
+  }
+  return ExitCode::success;
+}

@@ -1,0 +1,282 @@
+#include "cases/driver/run.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "cases/driver/build_solver.hpp"
+#include "hvi_git_revision.hpp"
+#include "mpm/io/checkpoint.hpp"
+#include "mpm/io/energy_log.hpp"
+#include "mpm/io/snapshot_writer.hpp"
+
+namespace hvi::driver {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::atomic<bool> interrupt_requested{false};
+extern "C" void on_interrupt(int) { interrupt_requested = true; }
+
+// Snapshot/checkpoint times: multiples of an interval; due once the run has reached them.
+struct Schedule {
+  double interval, next;
+  bool due(double t) const { return t >= next - 1e-9 * interval; }
+  void advance(double t) { next = (std::floor(t / interval + 1e-9) + 1.0) * interval; }
+};
+
+std::string format_duration(double seconds) {
+  const auto s = static_cast<long>(seconds);
+  return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
+}
+
+// One progress line on a terminal, rewritten in place; silent when not a TTY.
+class Progress {
+ public:
+  explicit Progress(double end_time) : end_time_(end_time), tty_(isatty(STDERR_FILENO)) {}
+  void update(const mpm::Solver& s, bool force = false) {
+    if (!tty_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (!force && now - last_ < std::chrono::milliseconds(500)) return;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    const double steps_per_s = (s.step_count() - first_step_) / std::max(wall, 1e-9);
+    const double sim_rate = (s.time() - first_time_) / std::max(wall, 1e-9);
+    const double eta = sim_rate > 0 ? (end_time_ - s.time()) / sim_rate : 0.0;
+    fmt::print(stderr, "\r  t = {:.4g} / {:.4g} s  step {}  dt {:.3g} s  {:.0f} steps/s  ETA {}   ",
+               s.time(), end_time_, s.step_count(), s.next_time_step(), steps_per_s, format_duration(eta));
+    std::fflush(stderr);
+    last_ = now;
+    active_ = true;
+  }
+  void start(const mpm::Solver& s) {
+    first_step_ = s.step_count();
+    first_time_ = s.time();
+  }
+  void finish() {
+    if (active_) fmt::print(stderr, "\n");
+    active_ = false;
+  }
+
+ private:
+  double end_time_;
+  bool tty_, active_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+  std::int64_t first_step_ = 0;
+  double first_time_ = 0.0;
+};
+
+void report_removals(const mpm::Solver& solver, std::vector<mpm::RemovalEvent> events, std::int64_t& reported) {
+  constexpr std::int64_t detailed = 5;
+  for (const auto& e : events) {
+    if (reported < detailed)
+      fmt::print("  step {}, t = {:.6g} s: particle {} (body '{}', material '{}') left the grid at "
+                 "({:.4g}, {:.4g}, {:.4g}) m; removed with mass {:.4g} kg, kinetic energy {:.4g} J\n",
+                 e.step, e.time, e.id, solver.body_names().at(e.body), solver.materials().at(e.material)->name(),
+                 e.position[0], e.position[1], e.position[2], e.mass,
+                 0.5 * e.mass * (e.velocity[0] * e.velocity[0] + e.velocity[1] * e.velocity[1] + e.velocity[2] * e.velocity[2]));
+    else if (reported == detailed)
+      fmt::print("  (further removals are counted in energy.csv and the summary)\n");
+    ++reported;
+  }
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+void write_run_info(const fs::path& dir, const RunOptions& options, int threads) {
+  toml::table info{{"hvi_version", "0.1.0"},
+                   {"git_revision", hvi::git_revision},
+                   {"command", options.command_line},
+                   {"threads", threads},
+                   {"resumed", options.resume}};
+  std::ofstream out(dir / (options.resume ? "run.resumed.json" : "run.json"));
+  out << toml::json_formatter(info) << '\n';
+}
+
+void write_timing(const fs::path& dir, const mpm::PhaseTimer& timer) {
+  std::ofstream out(dir / "timing.csv");
+  out << "phase,seconds,calls\n";
+  for (const auto& e : timer.entries()) out << fmt::format("\"{}\",{:.6f},{}\n", e.name, e.seconds, e.calls);
+}
+
+}  // namespace
+
+std::size_t peak_memory_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+  return 0;
+}
+
+int run_scene(const scene::Scene& scene, const RunOptions& options) {
+  const fs::path dir = options.out;
+  if (!options.resume && !options.overwrite && fs::exists(dir / "scene.resolved.toml")) {
+    fmt::print(stderr, "hvi: {} holds a previous run; use --overwrite to replace it or --resume to continue it\n", dir.string());
+    return input_error;
+  }
+  if (options.resume && !fs::exists(dir / "checkpoint.h5")) {
+    fmt::print(stderr, "hvi: {} has no checkpoint.h5 to resume from\n", dir.string());
+    return input_error;
+  }
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  const int threads = omp_get_max_threads();
+
+  // Build everything before writing anything: a scene that cannot be built leaves no output.
+  std::unique_ptr<mpm::Solver> solver = make_solver(scene);
+  std::vector<std::size_t> counts;
+  mpm::io::CheckpointExtras extras;
+  try {
+    if (options.resume) {
+      extras = mpm::io::read_checkpoint(dir / "checkpoint.h5", *solver);
+    } else {
+      counts = add_bodies(scene, *solver);
+      solver->initialise();
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "hvi: {}: {}\n", scene.file, e.what());
+    return input_error;
+  }
+
+  if (options.overwrite && !options.resume) {
+    for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "timing.csv", "run.resumed.json"})
+      fs::remove(dir / f);
+    fs::remove_all(dir / "snapshots");
+  }
+  fs::create_directories(dir);
+  write_text(dir / "scene.resolved.toml", scene::resolved_text(scene));
+  write_run_info(dir, options, threads);
+
+  mpm::Solver& s = *solver;
+  mpm::PhaseTimer& timer = s.timer();
+  mpm::io::SnapshotWriter snapshots(dir);
+  mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1);
+  Schedule output{scene.output_interval, 0.0}, checkpoints{scene.checkpoint_interval, scene.checkpoint_interval};
+  double initial_energy = 0.0;
+  const auto particle_count = s.particles().size();
+
+  if (options.resume) {
+    snapshots.resume(s.step_count());
+    output.next = extras.at("next_output_time");
+    checkpoints.next = extras.at("next_checkpoint_time");
+    initial_energy = extras.at("initial_energy");
+    fmt::print("hvi: resuming {} at step {}, t = {:.6g} s ({} particles, {} threads)\n", dir.string(),
+               s.step_count(), s.time(), particle_count, threads);
+  } else {
+    fmt::print("hvi: {}{}\n", scene.file, scene.title.empty() ? "" : " — " + scene.title);
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      fmt::print("  body '{}': {} particles, material '{}'\n", scene.bodies[b].name, counts[b],
+                 scene.materials[scene.bodies[b].material].name);
+    fmt::print("  grid {} x {} x {} cells of {:.4g} m; {} threads; first dt {:.4g} s\n", scene.grid.cells[0],
+               scene.grid.cells[1], scene.grid.cells[2], scene.grid.cell_size, threads, s.next_time_step());
+    const mpm::EnergyReport e0 = s.energy();
+    initial_energy = e0.total();
+    energy_log.write(s, e0);
+    snapshots.write(s);
+    output.advance(s.time());
+  }
+
+  auto checkpoint = [&] {
+    auto t = timer.scope("write checkpoint");
+    mpm::io::write_checkpoint(dir / "checkpoint.h5", s,
+                              {{"next_output_time", output.next},
+                               {"next_checkpoint_time", checkpoints.next},
+                               {"initial_energy", initial_energy}});
+  };
+
+  interrupt_requested = false;
+  auto previous_handler = std::signal(SIGINT, on_interrupt);
+  Progress progress(scene.end_time);
+  progress.start(s);
+  const auto wall_start = std::chrono::steady_clock::now();
+  const std::int64_t first_step = s.step_count();
+  std::int64_t reported_removals = 0;
+  int code = success;
+  const double end = scene.end_time;
+  try {
+    while (s.time() < end * (1 - 1e-12)) {
+      if (interrupt_requested) {
+        code = interrupted;
+        break;
+      }
+      if (scene.max_steps > 0 && s.step_count() >= scene.max_steps) break;
+      s.step(end - s.time());
+      report_removals(s, s.take_removal_events(), reported_removals);
+      const bool last = s.time() >= end * (1 - 1e-12);
+      if (s.step_count() % scene.energy_every == 0 || last) {
+        auto t = timer.scope("energy");
+        energy_log.write(s, s.energy());
+      }
+      if (output.due(s.time()) || last) {
+        auto t = timer.scope("write snapshots");
+        snapshots.write(s);
+        output.advance(s.time());
+      }
+      if (checkpoints.due(s.time())) {
+        checkpoints.advance(s.time());
+        checkpoint();
+      }
+      progress.update(s);
+    }
+    checkpoint();  // the end state, or where an interruption or max_steps stopped the run
+  } catch (const mpm::SolverError& e) {
+    progress.finish();
+    fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
+    fmt::print(stderr, "hvi: the last checkpoint in {} holds the state before the failure\n", dir.string());
+    std::signal(SIGINT, previous_handler);
+    return run_failed;
+  }
+  progress.update(s, true);
+  progress.finish();
+  std::signal(SIGINT, previous_handler);
+
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const std::int64_t steps = s.step_count() - first_step;
+  const mpm::EnergyReport e = s.energy();
+  const double balance = initial_energy != 0.0 ? (e.total() - initial_energy) / initial_energy : 0.0;
+  const double rate = steps * static_cast<double>(particle_count) / std::max(wall, 1e-9);
+  fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
+             code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
+             s.time(), s.step_count(), steps, wall, rate, threads, peak_memory_bytes() / 1e6);
+  fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}; balance {:+.3f}%\n",
+             initial_energy, e.total(), e.kinetic, e.internal, e.dissipated, e.removed, 100 * balance);
+  fmt::print("  momentum (incl. removed): ({:.6g}, {:.6g}, {:.6g}) kg m/s\n", e.momentum[0] + e.removed_momentum[0],
+             e.momentum[1] + e.removed_momentum[1], e.momentum[2] + e.removed_momentum[2]);
+  if (s.removed().particles > 0)
+    fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
+  fmt::print("\n{}\n", timer.table());
+  write_timing(dir, timer);
+  toml::table summary{{"time", s.time()},
+                      {"steps", s.step_count()},
+                      {"particles", static_cast<std::int64_t>(s.particles().size())},
+                      {"wall_seconds", wall},
+                      {"particle_steps_per_second", rate},
+                      {"threads", threads},
+                      {"peak_memory_bytes", static_cast<std::int64_t>(peak_memory_bytes())},
+                      {"initial_energy", initial_energy},
+                      {"energy_balance", balance},
+                      {"removed_particles", s.removed().particles},
+                      {"removed_mass", s.removed().mass}};
+  {
+    std::ofstream out(dir / "summary.json");
+    out << toml::json_formatter(summary) << '\n';
+  }
+  fmt::print("output: {}  (particles.xmf for ParaView, energy.csv, summary.json, scene.resolved.toml)\n", dir.string());
+  if (code == interrupted || (scene.max_steps > 0 && s.time() < end * (1 - 1e-12)))
+    fmt::print("resume with: hvi run --resume {}\n", dir.string());
+  return code;
+}
+
+}  // namespace hvi::driver

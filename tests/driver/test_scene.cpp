@@ -1,0 +1,176 @@
+// The real scene declaration: a valid scene resolves with every default filled in, and each class
+// of scene error names the file, line, column and key.
+#include <gtest/gtest.h>
+
+#include "cases/driver/scene.hpp"
+
+namespace hvi::scene {
+namespace {
+
+const std::string valid = R"(
+[run]
+end_time = "10 us"
+
+[grid]
+lower = ["0 mm", "0 mm", "0 mm"]
+upper = ["10.2 mm", "5 mm", "5 mm"]
+cell_size = "0.5 mm"
+
+[[boundary]]
+face = "z-"
+type = "symmetry"
+
+[[material]]
+name = "al"
+density = "2.7 g/cm^3"
+youngs_modulus = "70 GPa"
+
+[[body]]
+name = "ball"
+material = "al"
+velocity = ["0 m/s", "0 m/s", "-1 km/s"]
+sphere = { center = ["5 mm", "2.5 mm", "2.5 mm"], radius = "2 mm" }
+)";
+
+// The first diagnostic of a scene that must fail.
+Diagnostic first_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_scene(text, "scene.toml", overrides);
+  } catch (const SceneError& e) {
+    return e.diagnostics().front();
+  }
+  ADD_FAILURE() << "scene was accepted";
+  return {};
+}
+
+// The diagnostic about `key`; fails the test when there is none.
+Diagnostic error_for(const std::string& text, const std::string& key) {
+  try {
+    parse_scene(text, "scene.toml");
+  } catch (const SceneError& e) {
+    for (const auto& d : e.diagnostics())
+      if (d.key == key) return d;
+    ADD_FAILURE() << "no diagnostic for " << key << "; first: " << e.diagnostics().front().text();
+    return {};
+  }
+  ADD_FAILURE() << "scene was accepted";
+  return {};
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+TEST(Scene, ResolvesDefaultsAndUnits) {
+  const Scene s = parse_scene(valid, "scene.toml");
+  EXPECT_DOUBLE_EQ(s.end_time, 10e-6);
+  EXPECT_DOUBLE_EQ(s.output_interval, 1e-6);       // end_time / 10
+  EXPECT_DOUBLE_EQ(s.checkpoint_interval, 1e-6);   // the snapshot interval
+  EXPECT_EQ(s.grid.cells[0], 21);                  // 10.2 mm rounds up to 21 cells of 0.5 mm
+  EXPECT_DOUBLE_EQ(s.grid.upper[0], 10.5e-3);
+  EXPECT_EQ(s.grid.shape_function, "linear");
+  EXPECT_EQ(s.grid.scheme, "musl");
+  EXPECT_DOUBLE_EQ(s.materials[0].poisson_ratio, 0.3);
+  EXPECT_DOUBLE_EQ(s.materials[0].density, 2700.0);
+  EXPECT_DOUBLE_EQ(s.bodies[0].velocity[2], -1000.0);
+  EXPECT_EQ(s.bodies[0].particles_per_cell, 2);
+  ASSERT_EQ(s.boundaries.size(), 1u);
+  EXPECT_EQ(s.boundaries[0].axis, 2);
+  EXPECT_EQ(s.boundaries[0].plane, 0);
+  // The resolved table holds the computed values too, so the run can be repeated from it.
+  EXPECT_DOUBLE_EQ(s.resolved["output"]["interval"].value<double>().value(), 1e-6);
+  EXPECT_DOUBLE_EQ(s.resolved["grid"]["upper"][0].value<double>().value(), 10.5e-3);
+  EXPECT_DOUBLE_EQ(s.resolved["boundary"][0]["position"].value<double>().value(), 0.0);
+  const Scene again = parse_scene(resolved_text(s), "scene.resolved.toml");
+  EXPECT_EQ(again.grid.cells, s.grid.cells);
+  EXPECT_DOUBLE_EQ(again.output_interval, s.output_interval);
+}
+
+TEST(Scene, UnknownKeySuggestsTheNearestOne) {
+  // Both the unknown key and the now-missing cell_size are reported.
+  const Diagnostic d = error_for(replace(valid, "cell_size =", "cel_size ="), "grid.cel_size");
+  EXPECT_EQ(d.line, 8);
+  EXPECT_EQ(d.column, 1);
+  EXPECT_TRUE(contains(d.text(), "grid.cel_size")) << d.text();
+  EXPECT_TRUE(contains(d.text(), "did you mean 'cell_size'")) << d.text();
+}
+
+TEST(Scene, WrongUnitNamesWhatWasExpected) {
+  const Diagnostic d = first_error(replace(valid, "\"0.5 mm\"", "\"0.5 kg\""));
+  EXPECT_EQ(d.line, 8);
+  EXPECT_EQ(d.key, "grid.cell_size");
+  EXPECT_TRUE(contains(d.text(), "scene.toml:8:")) << d.text();
+  EXPECT_TRUE(contains(d.text(), "\"0.5 kg\"")) << d.text();
+  EXPECT_TRUE(contains(d.text(), "length")) << d.text();
+}
+
+TEST(Scene, OutOfRangeValueNamesTheRange) {
+  const Diagnostic d = first_error(replace(valid, "cell_size = \"0.5 mm\"", "cell_size = \"0.5 mm\"\ncfl = 1.5"));
+  EXPECT_EQ(d.line, 9);
+  EXPECT_EQ(d.key, "grid.cfl");
+  EXPECT_TRUE(contains(d.text(), "(0, 1]")) << d.text();
+}
+
+TEST(Scene, MissingRequiredKeyIsNamedAtItsTable) {
+  const Diagnostic d = first_error(replace(valid, "end_time = \"10 us\"", ""));
+  EXPECT_EQ(d.key, "run.end_time");
+  EXPECT_EQ(d.line, 2);  // the [run] header
+  EXPECT_TRUE(contains(d.text(), "missing")) << d.text();
+}
+
+TEST(Scene, UnknownMaterialIsNamedAtTheBody) {
+  const Diagnostic d = first_error(replace(valid, "material = \"al\"", "material = \"steel\""));
+  EXPECT_EQ(d.key, "body.ball.material");
+  EXPECT_EQ(d.line, 21);
+  EXPECT_TRUE(contains(d.text(), "no [[material]] named 'steel'")) << d.text();
+}
+
+TEST(Scene, BoundaryPlaneMustLieOnGridNodes) {
+  const Diagnostic d = first_error(replace(valid, "type = \"symmetry\"", "type = \"symmetry\"\nposition = \"0.3 mm\""));
+  EXPECT_EQ(d.key, "boundary.0.position");
+  EXPECT_EQ(d.line, 13);
+  EXPECT_TRUE(contains(d.text(), "does not lie on grid nodes")) << d.text();
+}
+
+TEST(Scene, BodyOutsideTheGridIsRefused) {
+  const Diagnostic d = first_error(replace(valid, "radius = \"2 mm\"", "radius = \"3 mm\""));
+  EXPECT_EQ(d.key, "body.ball");
+  EXPECT_TRUE(contains(d.text(), "outside the grid")) << d.text();
+}
+
+TEST(Scene, TomlSyntaxErrorHasItsLine) {
+  const Diagnostic d = first_error(replace(valid, "[grid]", "[grid"));
+  EXPECT_EQ(d.line, 5);
+  EXPECT_TRUE(contains(d.text(), "not valid TOML")) << d.text();
+}
+
+TEST(Scene, BadOverrideNamesTheCommandLine) {
+  const Diagnostic d = first_error(valid, {"grid.cell_size=0.5 s"});
+  EXPECT_EQ(d.key, "grid.cell_size");
+  EXPECT_TRUE(contains(d.text(), "--set grid.cell_size=0.5 s")) << d.text();
+  EXPECT_TRUE(contains(d.text(), "length")) << d.text();
+}
+
+TEST(Scene, OverrideAddressesBodiesByName) {
+  const Scene s = parse_scene(valid, "scene.toml", {"body.ball.velocity=[0, 0, -4500]", "grid.scheme=usl"});
+  EXPECT_DOUBLE_EQ(s.bodies[0].velocity[2], -4500.0);
+  EXPECT_EQ(s.grid.scheme, "usl");
+}
+
+TEST(Scene, EveryErrorIsReportedNotJustTheFirst) {
+  std::string text = replace(valid, "\"0.5 mm\"", "\"0.5 kg\"");
+  text = replace(text, "name = \"al\"", "name = \"al\"\ncolour = \"grey\"");
+  try {
+    parse_scene(text, "scene.toml");
+    FAIL() << "scene was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.diagnostics().size(), 2u);
+  }
+}
+
+}  // namespace
+}  // namespace hvi::scene
