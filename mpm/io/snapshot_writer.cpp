@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -70,6 +71,10 @@ void SnapshotWriter::write(const Solver& solver) {
     file.write(f.name, in_order(*f.data, 1, order).data(), n, 1);
     entry.attributes.push_back({f.name, 1, true});
   }
+  // The attribute order, so that a resumed run can rebuild the same index.
+  std::string names;
+  for (const auto& a : entry.attributes) names += (names.empty() ? "" : ",") + a.name;
+  file.write_attribute("fields", names);
   entries_.push_back(std::move(entry));
   write_index();
 }
@@ -86,8 +91,8 @@ void SnapshotWriter::resume(std::int64_t last_step) {
       if (step <= last_step && entries_.size() == index) {
         Entry e{file_name(index), file.read_double_attribute("time"), step,
                 file.shape("position").first, {}};
-        for (const auto& name : file.dataset_names()) {
-          if (name == "position") continue;
+        std::stringstream names(file.read_string_attribute("fields"));
+        for (std::string name; std::getline(names, name, ',');) {
           const bool integer = name == "id" || name == "body" || name == "material";
           e.attributes.push_back({name, static_cast<int>(file.shape(name).second), integer});
         }
