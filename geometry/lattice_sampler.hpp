@@ -8,6 +8,12 @@
 
 namespace hvi::geometry {
 
-PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor);
+//
+// With `clip`, only the points inside the clip box are kept, each with the volume share of the
+// unclipped sampling: a clip along planes of symmetry of the solid and the lattice (a half or
+// quarter model cut on grid planes through the solid's axis) keeps exactly that fraction of the
+// exact volume.
+PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor,
+                        const Bounds* clip = nullptr);
 
 }  // namespace hvi::geometry

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "mpm/phase_timer.hpp"
 #include "mpm/types.hpp"
 
 namespace hvi::mpm {
@@ -30,6 +31,8 @@ double LinearElastic::max_signal_speed(const Particles& particles, ParticleRange
 
 StressUpdate LinearElastic::update_stress(Particles& particles, ParticleRange range,
                                           const StressContext& context) const {
+  PhaseTimer dummy;
+  auto t = (context.timer ? *context.timer : dummy).scope("stress: linear elastic");
   const double dt = context.dt;
   double max_signal = 0.0;
   std::int64_t bad = INT64_MAX;

@@ -44,8 +44,9 @@ class Material {
   virtual void initialise(Particles& /*particles*/, ParticleRange /*range*/) const {}
   // Max over the group of (sound speed + |v|) in the current state, m/s.
   virtual double max_signal_speed(const Particles& particles, ParticleRange range) const = 0;
-  // Updates Cauchy stress and specific internal energy over one step, given the velocity gradient
-  // and the deformation gradient already advanced to the end of the step.
+  // Updates Cauchy stress, volume (advance_volume) and specific internal energy over one step,
+  // given the velocity gradient. Times its own phases on context.timer, one per model, so the
+  // timing table shows exactly the models a scene names.
   virtual StressUpdate update_stress(Particles& particles, ParticleRange range,
                                      const StressContext& context) const = 0;
   // Energy dissipated so far in the group (plastic work, viscous heating), J. Part of the internal

@@ -193,7 +193,6 @@ void Solver::update_stress() {
   double signal = 0.0;
   for (std::size_t m = 0; m < materials_.size(); ++m) {
     if (ranges_[m].size() == 0) continue;
-    auto t = timer_.scope("stress: " + materials_[m]->name());
     const StressUpdate r = materials_[m]->update_stress(particles_, ranges_[m], context);
     if (r.bad_particle >= 0) fail(static_cast<std::size_t>(r.bad_particle), r.problem);
     signal = std::max(signal, r.max_signal_speed);

@@ -5,16 +5,19 @@
 #include "geometry/lattice_sampler.hpp"
 #include "geometry/primitives.hpp"
 #include "mpm/elastic.hpp"
+#include "mpm/materials/hydro_material.hpp"
 
 namespace hvi::driver {
 
 namespace {
 
 std::unique_ptr<mpm::Material> make_material(const scene::MaterialSettings& m) {
-  // The registry of constitutive models: one entry per `strength` choice of the schema.
-  if (m.strength == "elastic")
-    return std::make_unique<mpm::LinearElastic>(m.name, m.density, m.youngs_modulus, m.poisson_ratio);
-  throw std::logic_error("no material model '" + m.strength + "'");
+  // Elasticity alone runs the plain elastic material; any named model runs the hydrocode material
+  // with exactly the models named.
+  if (m.elastic_only())
+    return std::make_unique<mpm::LinearElastic>(m.name, m.models.density, m.models.youngs_modulus,
+                                                m.models.poisson_ratio);
+  return std::make_unique<mpm::HydroMaterial>(m.name, m.models);
 }
 
 std::unique_ptr<geometry::Solid> make_solid(const scene::BodySettings& b) {
@@ -71,7 +74,10 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
     const auto solid = make_solid(body);
     geometry::PointSet points;
     try {
-      points = geometry::sample_lattice(*solid, scene.grid.cell_size / body.particles_per_cell, scene.grid.lower);
+      geometry::Bounds clip;
+      if (body.clip) clip = {body.clip->lower, body.clip->upper};
+      points = geometry::sample_lattice(*solid, scene.grid.cell_size / body.particles_per_cell, scene.grid.lower,
+                                        body.clip ? &clip : nullptr);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(fmt::format("body '{}': {}", body.name, e.what()));
     }

@@ -40,8 +40,9 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
   for (const auto& b : scene.boundaries)
     fmt::print("  boundary: {} plane {} = {:.4g} m\n", b.type, "xyz"[b.axis], b.position);
   for (const auto& m : scene.materials)
-    fmt::print("  material '{}': {} (density {:.4g} kg/m^3, E {:.4g} Pa, nu {})\n", m.name, m.strength,
-               m.density, m.youngs_modulus, m.poisson_ratio);
+    fmt::print("  material '{}'{}: {} (density {:.4g} kg/m^3, E {:.4g} Pa, nu {})\n", m.name,
+               m.library.empty() ? "" : " (library " + m.library + ")", m.effects(), m.models.density,
+               m.models.youngs_modulus, m.models.poisson_ratio);
   double mass = 0;
   for (double m : solver->particles().mass) mass += m;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
@@ -50,8 +51,6 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
   const double dt = solver->next_time_step();
   fmt::print("  {} particles, {:.6g} kg; first time step {:.4g} s, about {:.0f} steps to t = {:.4g} s\n",
              solver->particles().size(), mass, dt, scene.end_time / dt, scene.end_time);
-  fmt::print("  effects simulated: {} strength; no equation of state, damage, failure or heating\n",
-             scene.materials.empty() ? "no" : "elastic");
   return ExitCode::success;
 }
 

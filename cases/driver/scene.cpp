@@ -7,12 +7,23 @@
 #include <fmt/format.h>
 
 #include "cases/driver/scene_schema.hpp"
+#include "mpm/materials/library.hpp"
 
 namespace hvi::scene {
 
 SceneError::SceneError(std::vector<Diagnostic> diagnostics)
     : std::runtime_error(diagnostics.empty() ? "scene error" : diagnostics.front().text()),
       diagnostics_(std::move(diagnostics)) {}
+
+std::string MaterialSettings::effects() const {
+  std::string out = strength + " strength";
+  if (eos != "none") out += ", " + eos + " eos";
+  if (viscosity != "none") out += ", " + viscosity + " viscosity";
+  if (damage != "none") out += ", " + damage + " damage";
+  if (failure != "none") out += ", " + failure + " failure";
+  if (heating != "none") out += ", " + heating + " heating";
+  return out;
+}
 
 namespace {
 
@@ -92,17 +103,143 @@ void read_boundaries(toml::array& array, Scene& s, Checker& c) {
   }
 }
 
-void read_materials(const toml::array& array, Scene& s, Checker& c) {
+// Fills the parameters of one named model: each key from the scene if given, else from the library
+// entry; a key neither gives is an error. Writes the values used back into the resolved table.
+class ParameterSource {
+ public:
+  ParameterSource(toml::table& table, std::string path, const std::string& library, Checker& c)
+      : table_(table), path_(std::move(path)), library_(library), c_(c) {}
+  double get(const char* key, std::optional<double> library_value) {
+    double v = 0.0;
+    if (auto given = table_[key].value<double>()) {
+      v = *given;
+    } else if (library_value) {
+      v = *library_value;
+    } else {
+      c_.error(path_, fmt::format("missing parameter '{}'{}", key,
+                                  library_.empty() ? " (give it, or name a library material that has it)"
+                                                   : fmt::format(" (library material '{}' has none)", library_)));
+    }
+    table_.insert_or_assign(key, v);
+    return v;
+  }
+
+ private:
+  toml::table& table_;
+  std::string path_;
+  const std::string& library_;
+  Checker& c_;
+};
+
+template <class T, class F>
+std::optional<double> from(const std::optional<T>& model, F field) {
+  if (!model) return std::nullopt;
+  return field(*model);
+}
+
+void read_materials(toml::array& array, Scene& s, Checker& c) {
   for (std::size_t i = 0; i < array.size(); ++i) {
-    const toml::table& t = *array[i].as_table();
+    toml::table& t = *array[i].as_table();
+    const std::string path = element_path("material", t, i);
     MaterialSettings m;
     m.name = text(t, "name");
     for (const auto& other : s.materials)
-      if (other.name == m.name) c.error(element_path("material", t, i) + ".name", "a material of this name is already defined");
+      if (other.name == m.name) c.error(path + ".name", "a material of this name is already defined");
+    m.library = t["library"].value_or(std::string{});
+    const mpm::LibraryMaterial* lib = m.library.empty() ? nullptr : mpm::find_library_material(m.library);
+    const mpm::HydroModels* L = lib ? &lib->parameters : nullptr;
     m.strength = text(t, "strength");
-    m.density = number(t, "density");
-    m.youngs_modulus = number(t, "youngs_modulus");
-    m.poisson_ratio = number(t, "poisson_ratio");
+    m.eos = text(t, "eos");
+    m.viscosity = text(t, "viscosity");
+    m.damage = text(t, "damage");
+    m.failure = text(t, "failure");
+    m.heating = text(t, "heating");
+
+    mpm::HydroModels& h = m.models;
+    h.shear_strength = m.strength != "none";
+    ParameterSource top(t, path, m.library, c);
+    h.density = top.get("density", L ? std::optional(L->density) : std::nullopt);
+    h.youngs_modulus = top.get("youngs_modulus", L ? std::optional(L->youngs_modulus) : std::nullopt);
+    h.poisson_ratio = top.get("poisson_ratio", L ? std::optional(L->poisson_ratio) : std::nullopt);
+
+    // One parameter table per model: kept (and completed) for the named models, refused for the
+    // others when the scene wrote it.
+    auto model_table = [&](const char* key, bool named, const char* model_key, const char* model_name) -> toml::table* {
+      const std::string table_path = path + "." + key;
+      if (!named) {
+        if (c.v.locations.count(table_path))
+          c.error(table_path, fmt::format("parameters for a model the material does not name; set {} = \"{}\" or remove the table",
+                                          model_key, model_name));
+        t.erase(key);
+        return nullptr;
+      }
+      if (!t[key].as_table()) t.insert_or_assign(key, toml::table{});
+      return t[key].as_table();
+    };
+
+    if (auto* jt = model_table("johnson_cook", m.strength == "johnson-cook", "strength", "johnson-cook")) {
+      ParameterSource p(*jt, path + ".johnson_cook", m.library, c);
+      const auto& lj = L ? L->johnson_cook : std::nullopt;
+      mpm::JohnsonCookStrength jc;
+      jc.A = p.get("A", from(lj, [](auto& x) { return x.A; }));
+      jc.B = p.get("B", from(lj, [](auto& x) { return x.B; }));
+      jc.n = p.get("n", from(lj, [](auto& x) { return x.n; }));
+      jc.C = p.get("C", from(lj, [](auto& x) { return x.C; }));
+      jc.m = p.get("m", from(lj, [](auto& x) { return x.m; }));
+      jc.melt_temperature = p.get("melt_temperature", from(lj, [](auto& x) { return x.melt_temperature; }));
+      jc.room_temperature = p.get("room_temperature", from(lj, [](auto& x) { return x.room_temperature; }));
+      jc.reference_strain_rate = p.get("reference_strain_rate", lj ? std::optional(lj->reference_strain_rate) : std::optional(1.0));
+      if (!(jc.melt_temperature > jc.room_temperature))
+        c.error(path + ".johnson_cook.melt_temperature", "expected melt_temperature > room_temperature");
+      h.johnson_cook = jc;
+    }
+    if (auto* mt = model_table("mie_gruneisen", m.eos == "mie-gruneisen", "eos", "mie-gruneisen")) {
+      ParameterSource p(*mt, path + ".mie_gruneisen", m.library, c);
+      const auto& lm = L ? L->mie_gruneisen : std::nullopt;
+      mpm::MieGruneisen mg;
+      mg.reference_density = h.density;
+      mg.c0 = p.get("c0", from(lm, [](auto& x) { return x.c0; }));
+      mg.s = p.get("s", from(lm, [](auto& x) { return x.s; }));
+      mg.gamma0 = p.get("gamma0", from(lm, [](auto& x) { return x.gamma0; }));
+      h.mie_gruneisen = mg;
+    }
+    if (auto* vt = model_table("bulk_viscosity", m.viscosity == "bulk", "viscosity", "bulk")) {
+      mpm::ArtificialViscosity av;
+      av.linear = (*vt)["linear"].value<double>().value();
+      av.quadratic = (*vt)["quadratic"].value<double>().value();
+      av.length = s.grid.cell_size;
+      h.viscosity = av;
+    }
+    if (auto* dt = model_table("johnson_cook_damage", m.damage == "johnson-cook", "damage", "johnson-cook")) {
+      ParameterSource p(*dt, path + ".johnson_cook_damage", m.library, c);
+      const auto& ld = L ? L->damage : std::nullopt;
+      mpm::JohnsonCookDamage d;
+      d.D1 = p.get("D1", from(ld, [](auto& x) { return x.D1; }));
+      d.D2 = p.get("D2", from(ld, [](auto& x) { return x.D2; }));
+      d.D3 = p.get("D3", from(ld, [](auto& x) { return x.D3; }));
+      d.D4 = p.get("D4", from(ld, [](auto& x) { return x.D4; }));
+      d.D5 = p.get("D5", from(ld, [](auto& x) { return x.D5; }));
+      d.reference_strain_rate = p.get("reference_strain_rate", ld ? std::optional(ld->reference_strain_rate) : std::optional(1.0));
+      if (m.strength != "johnson-cook")
+        c.error(path + ".damage", "johnson-cook damage accumulates plastic strain: it needs strength = \"johnson-cook\"");
+      h.damage = d;
+    }
+    if (auto* ft = model_table("max_principal_stress", m.failure == "max-principal-stress", "failure", "max-principal-stress")) {
+      ParameterSource p(*ft, path + ".max_principal_stress", m.library, c);
+      h.max_principal_stress = p.get("limit", L ? L->max_principal_stress : std::nullopt);
+    }
+    if (auto* ht = model_table("adiabatic_heating", m.heating == "adiabatic", "heating", "adiabatic")) {
+      ParameterSource p(*ht, path + ".adiabatic_heating", m.library, c);
+      mpm::AdiabaticHeating heat;
+      heat.specific_heat = p.get("specific_heat", lib ? lib->specific_heat : std::nullopt);
+      heat.taylor_quinney = (*ht)["taylor_quinney"].value<double>().value();
+      if (m.strength != "johnson-cook")
+        c.error(path + ".heating", "adiabatic heating comes from plastic work: it needs strength = \"johnson-cook\"");
+      h.heating = heat;
+    }
+    h.initial_temperature = t["initial_temperature"].value<double>().value_or(
+        L ? L->initial_temperature : (h.johnson_cook ? h.johnson_cook->room_temperature : 293.0));
+    t.insert_or_assign("initial_temperature", h.initial_temperature);
     s.materials.push_back(m);
   }
 }
@@ -166,7 +303,13 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
       b.shape = CylinderShape{vec3(*cy, "base_center"), axis_index(text(*cy, "axis")),
                               number(*cy, "radius"), number(*cy, "length")};
     }
-    const auto box = bounds_of(b);
+    if (const auto* cl = t["clip"].as_table()) b.clip = BoxShape{vec3(*cl, "lower"), vec3(*cl, "upper")};
+    auto box = bounds_of(b);
+    if (b.clip)
+      for (int d = 0; d < 3; ++d) {
+        box[0][d] = std::max(box[0][d], b.clip->lower[d]);
+        box[1][d] = std::min(box[1][d], b.clip->upper[d]);
+      }
     for (int d = 0; d < 3; ++d)
       if (box[0][d] < s.grid.lower[d] || box[1][d] > s.grid.upper[d]) {
         c.error(path, fmt::format("the body reaches [{}, {}] m along {}, outside the grid [{}, {}] m",
@@ -193,7 +336,7 @@ Scene resolve(const toml::table& document, const std::string& file) {
   s.max_steps = integer(run, "max_steps");
   read_grid(*r["grid"].as_table(), s, c);
   read_boundaries(*s.resolved["boundary"].as_array(), s, c);
-  read_materials(*r["material"].as_array(), s, c);
+  read_materials(*s.resolved["material"].as_array(), s, c);
   read_bodies(*r["body"].as_array(), s, c);
 
   toml::table& output = *s.resolved["output"].as_table();

@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "cases/driver/schema.hpp"
+#include "mpm/materials/hydro_material.hpp"
 
 namespace hvi::scene {
 
@@ -45,9 +46,18 @@ struct BoundarySettings {
   int plane = 0;           // grid node index of the plane
 };
 
+// A material: the models it names and their parameters (scene values over library values).
 struct MaterialSettings {
-  std::string name, strength;
-  double density = 0.0, youngs_modulus = 0.0, poisson_ratio = 0.0;
+  std::string name, library;
+  std::string strength, eos, viscosity, damage, failure, heating;  // as named in the scene
+  mpm::HydroModels models;  // density, elasticity, and the parameters of the named models only
+  // Nothing but elasticity: simulated by the plain linear elastic material.
+  bool elastic_only() const {
+    return strength == "elastic" && eos == "none" && viscosity == "none" && damage == "none" &&
+           failure == "none" && heating == "none";
+  }
+  // The models named, for messages ("johnson-cook strength, mie-gruneisen eos").
+  std::string effects() const;
 };
 
 struct SphereShape {
@@ -69,6 +79,7 @@ struct BodySettings {
   Vec3 velocity{};
   int particles_per_cell = 2;
   std::variant<SphereShape, BoxShape, CylinderShape> shape;
+  std::optional<BoxShape> clip;  // keep only the part inside (half and quarter models)
 };
 
 struct Scene {

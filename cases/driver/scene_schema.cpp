@@ -1,7 +1,15 @@
 #include "cases/driver/scene_schema.hpp"
 
+#include "mpm/materials/library.hpp"
+
 namespace hvi::scene {
 namespace {
+
+std::vector<std::string> library_names() {
+  std::vector<std::string> names;
+  for (const auto& m : mpm::material_library()) names.push_back(m.name);
+  return names;
+}
 
 TableSpec run_table() {
   TableSpec t{.name = "run", .doc = "How long to simulate.", .required = true};
@@ -28,8 +36,9 @@ TableSpec grid_table() {
       .vector_required("upper", dims::length,
                        "Upper corner of the domain (rounded up to a whole number of cells)")
       .quantity_required("cell_size", dims::length, positive(), "Edge of a cubic grid cell")
-      .choice("shape_function", {"linear", "gimp"}, "linear",
-              "Grid shape functions: linear (standard MPM, as the paper) or gimp (uGIMP)")
+      .choice("shape_function", {"gimp", "linear"}, "gimp",
+              "Grid shape functions: gimp (uGIMP) or linear (standard MPM, the paper's; loses shock "
+              "pressure to cell-crossing noise, see README)")
       .choice("scheme", {"musl", "usl", "usf"}, "musl",
               "Update scheme: musl, usl, or usf (update stress first, the paper's flowchart)")
       .number("flip", closed(0, 1), 1.0,
@@ -45,9 +54,9 @@ TableSpec boundary_table() {
               .doc = "A condition on a plane of grid nodes (and all nodes beyond it). Faces "
                      "without a condition are free.",
               .array = true};
-  t.choice("face", {"x-", "x+", "y-", "y+", "z-", "z+"}, std::nullopt,
-           "Which side is outside: x- constrains nodes at and below the plane along x")
-      .choice("type", {"fixed", "symmetry"}, std::nullopt,
+  t.choice_required("face", {"x-", "x+", "y-", "y+", "z-", "z+"},
+                    "Which side is outside: x- constrains nodes at and below the plane along x")
+      .choice_required("type", {"fixed", "symmetry"},
               "fixed: all velocity components zero; symmetry: the normal component zero (a "
               "frictionless roller, a mirror plane)")
       .optional_quantity("position", dims::length, Range{},
@@ -56,15 +65,57 @@ TableSpec boundary_table() {
   return t;
 }
 
-TableSpec material_table() {
-  TableSpec t{.name = "material", .doc = "A material, referenced by bodies through its name.",
+// Each model a material can name has its own parameter table; a parameter not given comes from
+// the `library` entry. Tables of models the material does not name are refused.
+TableSpec material_table(const std::vector<std::string>& library_names) {
+  TableSpec jc{.name = "johnson_cook", .doc = "Johnson-Cook strength parameters (paper eq. 1)."};
+  jc.optional_quantity("A", dims::pressure, non_negative(), "Initial yield stress")
+      .optional_quantity("B", dims::pressure, non_negative(), "Hardening modulus")
+      .number("n", positive(), std::nullopt, "Hardening exponent")
+      .number("C", non_negative(), std::nullopt, "Strain-rate coefficient")
+      .number("m", positive(), std::nullopt, "Thermal-softening exponent")
+      .optional_quantity("melt_temperature", dims::temperature, positive(), "T_melt")
+      .optional_quantity("room_temperature", dims::temperature, positive(), "T_room")
+      .optional_quantity("reference_strain_rate", dims::rate, positive(), "Reference strain rate (1/s in the paper)");
+  TableSpec mg{.name = "mie_gruneisen", .doc = "Mie-Grüneisen EOS parameters (paper eqs. 4-5)."};
+  mg.optional_quantity("c0", dims::velocity, positive(), "Bulk sound speed (Us-up intercept)")
+      .number("s", non_negative(), std::nullopt, "Us-up slope")
+      .number("gamma0", non_negative(), std::nullopt, "Grüneisen parameter at the reference density");
+  TableSpec damage{.name = "johnson_cook_damage", .doc = "Johnson-Cook damage parameters (paper eqs. 2-3)."};
+  damage.number("D1", Range{}, std::nullopt, "D1")
+      .number("D2", Range{}, std::nullopt, "D2")
+      .number("D3", Range{}, std::nullopt, "D3")
+      .number("D4", Range{}, std::nullopt, "D4")
+      .number("D5", Range{}, std::nullopt, "D5 (multiplies the homologous temperature T*)")
+      .optional_quantity("reference_strain_rate", dims::rate, positive(), "Reference strain rate");
+  TableSpec spall{.name = "max_principal_stress", .doc = "Max-principal-stress (spall) failure."};
+  spall.optional_quantity("limit", dims::pressure, positive(), "sigma_max: failure when the largest principal stress reaches it");
+  TableSpec heating{.name = "adiabatic_heating", .doc = "Temperature rise from plastic work."};
+  heating.optional_quantity("specific_heat", dims::specific_heat, positive(), "c_v")
+      .number("taylor_quinney", closed(0, 1), 0.9, "Fraction of plastic work turned into heat");
+  TableSpec viscosity{.name = "bulk_viscosity",
+                      .doc = "Artificial bulk viscosity q = rho h (linear c |tr D| + quadratic h (tr D)^2) in compression, h the cell size."};
+  viscosity.number("linear", non_negative(), 0.2, "Linear coefficient (AUTODYN's default)")
+      .number("quadratic", non_negative(), 1.0, "Quadratic coefficient (AUTODYN's default)");
+
+  std::vector<std::string> library_choices = library_names;
+  TableSpec t{.name = "material", .doc = "A material, referenced by bodies through its name. It names the models it simulates; a model not named costs nothing.",
               .array = true, .required = true};
   t.string_required("name", "Name bodies use to refer to it")
-      .choice("strength", {"elastic"}, "elastic",
-              "Deviatoric response: elastic (isotropic, Jaumann stress rate, no yield)")
-      .quantity_required("density", dims::density, positive(), "Reference density")
-      .quantity_required("youngs_modulus", dims::pressure, positive(), "Young's modulus E")
-      .number("poisson_ratio", right_open(0, 0.5), 0.3, "Poisson's ratio");
+      .choice("library", library_choices, std::nullopt, "A library material that supplies every parameter not given here")
+      .optional_quantity("density", dims::density, positive(), "Reference density (required without library)")
+      .optional_quantity("youngs_modulus", dims::pressure, positive(), "Young's modulus E (required without library)")
+      .number("poisson_ratio", right_open(0, 0.5), std::nullopt, "Poisson's ratio (required without library)")
+      .optional_quantity("initial_temperature", dims::temperature, positive(), "Initial temperature (default: the room temperature of the strength model, else 293 K)")
+      .choice("strength", {"elastic", "johnson-cook", "none"}, "elastic",
+              "Deviatoric response: elastic (Jaumann stress rate, no yield), johnson-cook (eq. 1, radial return), or none (hydrodynamic)")
+      .choice("eos", {"none", "mie-gruneisen"}, "none",
+              "Pressure: none (the elastic bulk modulus E / 3(1 - 2 nu)) or mie-gruneisen (eqs. 4-5)")
+      .choice("viscosity", {"none", "bulk"}, "none", "Artificial bulk viscosity in compression (shocks)")
+      .choice("damage", {"none", "johnson-cook"}, "none", "Damage accumulation (eqs. 2-3); failure when D reaches 1")
+      .choice("failure", {"none", "max-principal-stress"}, "none", "Instantaneous failure criterion (spall)")
+      .choice("heating", {"none", "adiabatic"}, "none", "Temperature from plastic work (feeds the Johnson-Cook T*)")
+      .table(jc).table(mg).table(damage).table(spall).table(heating).table(viscosity);
   return t;
 }
 
@@ -75,9 +126,14 @@ TableSpec body_table() {
   box.vector_required("lower", dims::length, "Lower corner").vector_required("upper", dims::length, "Upper corner");
   TableSpec cylinder{.name = "cylinder", .doc = "A solid circular cylinder along a coordinate axis."};
   cylinder.vector_required("base_center", dims::length, "Centre of the base disc")
-      .choice("axis", {"x", "y", "z"}, std::nullopt, "Direction of the axis")
+      .choice_required("axis", {"x", "y", "z"}, "Direction of the axis")
       .quantity_required("radius", dims::length, positive(), "Radius")
       .quantity_required("length", dims::length, positive(), "Length along the axis");
+
+  TableSpec clip{.name = "clip",
+                 .doc = "Keep only the part of the body inside this box: a half or quarter model cut "
+                        "on symmetry planes (pair it with [[boundary]] type = \"symmetry\")."};
+  clip.vector_required("lower", dims::length, "Lower corner").vector_required("upper", dims::length, "Upper corner");
 
   TableSpec t{.name = "body", .doc = "A body of material points; exactly one shape sub-table.",
               .array = true, .required = true};
@@ -88,7 +144,8 @@ TableSpec body_table() {
                "Material points per grid cell along each axis")
       .table(sphere)
       .table(box)
-      .table(cylinder);
+      .table(cylinder)
+      .table(clip);
   t.one_of = {"sphere", "box", "cylinder"};
   return t;
 }
@@ -100,7 +157,7 @@ TableSpec make_schema() {
       .table(output_table())
       .table(grid_table())
       .table(boundary_table())
-      .table(material_table())
+      .table(material_table(library_names()))
       .table(body_table());
   return root;
 }

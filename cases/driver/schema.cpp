@@ -178,6 +178,13 @@ TableSpec& TableSpec::choice(std::string name, std::vector<std::string> choices,
   return *this;
 }
 
+TableSpec& TableSpec::choice_required(std::string name, std::vector<std::string> choices,
+                                      std::string doc) {
+  choice(std::move(name), std::move(choices), std::nullopt, std::move(doc));
+  keys.back().required = true;
+  return *this;
+}
+
 TableSpec& TableSpec::string_list(std::string name, std::vector<std::string> default_value,
                                   std::string doc) {
   Key key = make_key(std::move(name), ValueKind::string_list, std::move(doc));

@@ -82,6 +82,7 @@ struct TableSpec {
   TableSpec& string_required(std::string name, std::string doc);
   TableSpec& choice(std::string name, std::vector<std::string> choices,
                     std::optional<std::string> default_value, std::string doc);
+  TableSpec& choice_required(std::string name, std::vector<std::string> choices, std::string doc);
   TableSpec& string_list(std::string name, std::vector<std::string> default_value, std::string doc);
   TableSpec& optional_quantity(std::string name, Dim dim, Range range, std::string doc);
   TableSpec& table(TableSpec sub);

@@ -24,6 +24,7 @@ type = "symmetry"
 name = "al"
 density = "2.7 g/cm^3"
 youngs_modulus = "70 GPa"
+poisson_ratio = 0.33
 
 [[body]]
 name = "ball"
@@ -72,10 +73,11 @@ TEST(Scene, ResolvesDefaultsAndUnits) {
   EXPECT_DOUBLE_EQ(s.checkpoint_interval, 1e-6);   // the snapshot interval
   EXPECT_EQ(s.grid.cells[0], 21);                  // 10.2 mm rounds up to 21 cells of 0.5 mm
   EXPECT_DOUBLE_EQ(s.grid.upper[0], 10.5e-3);
-  EXPECT_EQ(s.grid.shape_function, "linear");
+  EXPECT_EQ(s.grid.shape_function, "gimp");
   EXPECT_EQ(s.grid.scheme, "musl");
-  EXPECT_DOUBLE_EQ(s.materials[0].poisson_ratio, 0.3);
-  EXPECT_DOUBLE_EQ(s.materials[0].density, 2700.0);
+  EXPECT_DOUBLE_EQ(s.materials[0].models.poisson_ratio, 0.33);
+  EXPECT_DOUBLE_EQ(s.materials[0].models.density, 2700.0);
+  EXPECT_TRUE(s.materials[0].elastic_only());
   EXPECT_DOUBLE_EQ(s.bodies[0].velocity[2], -1000.0);
   EXPECT_EQ(s.bodies[0].particles_per_cell, 2);
   ASSERT_EQ(s.boundaries.size(), 1u);
@@ -125,7 +127,7 @@ TEST(Scene, MissingRequiredKeyIsNamedAtItsTable) {
 TEST(Scene, UnknownMaterialIsNamedAtTheBody) {
   const Diagnostic d = first_error(replace(valid, "material = \"al\"", "material = \"steel\""));
   EXPECT_EQ(d.key, "body.ball.material");
-  EXPECT_EQ(d.line, 21);
+  EXPECT_EQ(d.line, 22);
   EXPECT_TRUE(contains(d.text(), "no [[material]] named 'steel'")) << d.text();
 }
 

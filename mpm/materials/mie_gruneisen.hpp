@@ -1,0 +1,59 @@
+#pragma once
+// Mie-Grüneisen equation of state with a linear Us-up Hugoniot, the paper's eqs. (4)-(5) in the
+// standard form (AUTODYN "shock", LS-DYNA *EOS_GRUNEISEN without the cubic terms):
+//   mu = rho / rho0 - 1
+//   p_H = rho0 c0^2 mu (1 + mu) / [1 - (s - 1) mu]^2   (mu >= 0; the paper prints c0 for c0^2)
+//   p_H = rho0 c0^2 mu                                   (mu < 0, tension)
+//   p   = p_H (1 - Gamma mu / 2) + Gamma rho e,   Gamma rho = Gamma0 rho0,
+// with e the current specific internal energy (J/kg). The paper's "gamma0 E0" is read as
+// Gamma0 rho0 e: E0 the internal energy per unit reference volume, integrated per particle.
+#include <algorithm>
+#include <cmath>
+
+namespace hvi::mpm {
+
+struct MieGruneisen {
+  double reference_density = 0;  // rho0, kg/m^3
+  double c0 = 0;                 // bulk sound speed, m/s
+  double s = 0;                  // Us-up slope
+  double gamma0 = 0;             // Grüneisen parameter at rho0
+
+  // The compression branch is singular at mu = 1 / (s - 1); stay below it.
+  double limited_mu(double mu) const { return s > 1.0 ? std::min(mu, 0.9 / (s - 1.0)) : mu; }
+
+  double hugoniot_pressure(double mu) const {
+    const double K0 = reference_density * c0 * c0;
+    if (mu < 0.0) return K0 * mu;
+    mu = limited_mu(mu);
+    const double den = 1.0 - (s - 1.0) * mu;
+    return K0 * mu * (1.0 + mu) / (den * den);
+  }
+  // d p_H / d mu
+  double hugoniot_slope(double mu) const {
+    const double K0 = reference_density * c0 * c0;
+    if (mu < 0.0) return K0;
+    mu = limited_mu(mu);
+    const double den = 1.0 - (s - 1.0) * mu;
+    return K0 * ((1.0 + 2.0 * mu) * den + 2.0 * (s - 1.0) * mu * (1.0 + mu)) / (den * den * den);
+  }
+  // Pressure = A(rho) + B e: the part independent of e, and B = Gamma0 rho0.
+  double cold_part(double rho) const {
+    const double mu = rho / reference_density - 1.0;
+    const double gamma = gamma0 / (1.0 + mu);  // Gamma = Gamma0 rho0 / rho
+    return hugoniot_pressure(mu) * (1.0 - 0.5 * gamma * mu);
+  }
+  double energy_coefficient() const { return gamma0 * reference_density; }
+  double pressure(double rho, double e) const { return cold_part(rho) + energy_coefficient() * e; }
+
+  // Squared bulk sound speed c^2 = dp/drho|_e + p / rho^2 dp/de|_rho, floored at a tenth of c0^2
+  // so that a state in tension keeps a meaningful time step.
+  double bulk_sound_speed_squared(double rho, double p) const {
+    const double mu = rho / reference_density - 1.0;
+    const double dp_dmu_e = hugoniot_slope(mu) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) -
+                            hugoniot_pressure(mu) * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
+    const double c2 = dp_dmu_e / reference_density + p * energy_coefficient() / (rho * rho);
+    return std::max(c2, 0.1 * c0 * c0);
+  }
+};
+
+}  // namespace hvi::mpm

@@ -1,0 +1,109 @@
+// Johnson-Cook damage (paper eqs. 2-3) under a prescribed strain path, max-principal-stress
+// failure, the principal stress against Eigen's eigen-solver, and what failed material keeps.
+#include <cmath>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include "mpm/materials/hydro_material.hpp"
+#include "mpm/materials/library.hpp"
+#include "mpm/materials/principal_stress.hpp"
+#include "mpm/types.hpp"
+#include "tests/mpm/materials/material_driver.hpp"
+
+namespace hvi::mpm {
+namespace {
+
+TEST(PrincipalStress, LargestEigenvalueMatchesEigen) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1e9, 1e9);
+  for (int k = 0; k < 1000; ++k) {
+    double s[6];
+    for (double& c : s) c = u(rng);
+    if (k % 10 == 0) s[sym::xy] = s[sym::xz] = s[sym::yz] = 0.0;  // already diagonal
+    Eigen::Matrix3d M;
+    M << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
+    const double expected = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(M).eigenvalues().maxCoeff();
+    // The trigonometric solution loses a few digits near repeated roots: 1e-9 of the scale.
+    EXPECT_NEAR(max_principal(s), expected, 1e-9 * 3e9);
+  }
+}
+
+TEST(JohnsonCookDamage, FailureStrainEqualsEquationThree) {
+  const JohnsonCookDamage d = *find_library_material("Al6061")->parameters.damage;
+  // sigma* = 1/3 (uniaxial tension), rate 100/s, T* = 0.2:
+  const double expected = (-0.77 + 1.45 * std::exp(-0.47 / 3.0)) * (1 + 0.0 * std::log(100.0)) * (1 + 1.6 * 0.2);
+  EXPECT_NEAR(d.failure_strain(1.0 / 3.0, 100.0, 0.2), expected, 1e-14);
+  // High triaxiality makes the bracket negative: failure within a step.
+  EXPECT_EQ(d.failure_strain(3.0, 1.0, 0.0), JohnsonCookDamage::minimum_failure_strain);
+}
+
+// Uniaxial strain in tension at constant rate: with a constant triaxiality path the damage after
+// each step must equal the sum of d eps_p / eps_f(sigma*) with the material's own sigma* and
+// plastic strain increments (eq. 2), and the particle fails at D = 1.
+TEST(JohnsonCookDamage, AccumulatesAsEquationTwoAndFails) {
+  HydroModels models = find_library_material("Al5052")->parameters;
+  models.mie_gruneisen.reset();
+  const HydroMaterial material("core", models);
+  test::MaterialPoint point(material);
+  const JohnsonCookDamage& jd = *models.damage;
+  const double rate = 1e4, dt = 1e-8;
+  const double L[9] = {rate, 0, 0, 0, 0, 0, 0, 0, 0};
+  double expected = 0.0;
+  int failed_at = -1;
+  for (int step = 0; step < 100000 && failed_at < 0; ++step) {
+    const double eps_before = point.field("plastic_strain");
+    point.step(L, dt);
+    const double d_eps = point.field("plastic_strain") - eps_before;
+    if (point.field("failed") > 0) {
+      failed_at = step;
+      break;
+    }
+    if (d_eps > 0) {
+      const double* s = point.stress();
+      const double triax = trace_sym(s) / 3.0 / von_mises(s);
+      expected += d_eps / jd.failure_strain(triax, d_eps / dt, 0.0);
+    }
+    ASSERT_NEAR(point.field("damage"), expected, 1e-12 + 1e-10 * expected) << step;
+  }
+  ASSERT_GE(failed_at, 0) << "never failed";
+  EXPECT_NEAR(expected, 1.0, 0.02);  // it failed when the sum reached 1 (within one increment)
+  // Failed material: no deviatoric stress and no tension.
+  const double* s = point.stress();
+  for (int c = 0; c < 6; ++c) EXPECT_EQ(s[c] > 0 ? s[c] : 0.0, 0.0);
+  EXPECT_DOUBLE_EQ(s[sym::xy], 0.0);
+  EXPECT_DOUBLE_EQ(s[sym::xx], s[sym::yy]);
+}
+
+// Max principal stress: uniaxial-strain tension until sigma_1 reaches sigma_max; then the particle
+// has failed and carries nothing in tension, but pressure again in compression.
+TEST(MaxPrincipalStress, FailsAtSigmaMaxAndKeepsOnlyCompression) {
+  HydroModels models = find_library_material("Al2024-T81")->parameters;  // sigma_max 1500 MPa
+  models.damage.reset();
+  const HydroMaterial material("face", models);
+  test::MaterialPoint point(material);
+  const double rate = 1e4, dt = 1e-8;
+  const double tension[9] = {rate, 0, 0, 0, 0, 0, 0, 0, 0};
+  double last_intact = 0.0;
+  int steps = 0;
+  while (point.field("failed") == 0.0 && steps < 100000) {
+    last_intact = max_principal(point.stress());
+    point.step(tension, dt);
+    ++steps;
+  }
+  ASSERT_GT(point.field("failed"), 0.0);
+  EXPECT_LT(last_intact, 1500e6);
+  EXPECT_GT(last_intact, 1500e6 * 0.98);  // one step's stress increment below the limit
+  for (int c = 0; c < 6; ++c) EXPECT_EQ(point.stress()[c], 0.0);
+  point.step(tension, dt);
+  for (int c = 0; c < 6; ++c) EXPECT_EQ(point.stress()[c], 0.0);  // still nothing in tension
+  const double compression[9] = {-rate, 0, 0, 0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < 400; ++k) point.step(compression, dt);  // back past the reference density
+  const double* s = point.stress();
+  EXPECT_LT(s[sym::xx], 0.0);  // pressure again
+  EXPECT_DOUBLE_EQ(s[sym::xx], s[sym::yy]);  // but no deviator
+}
+
+}  // namespace
+}  // namespace hvi::mpm
