@@ -24,9 +24,9 @@ void owner_keys(const Particles& particles, const GridGeometry& g, const std::ve
   const double* hw = half_width ? half_width->data() : nullptr;
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
-    const double a = hw ? hw[p] * inv_h : 0.0;
     int base[3];
-    for (int d = 0; d < 3; ++d) base[d] = Shape::lowest((x[3 * p + d] - g.origin[d]) * inv_h, a);
+    for (int d = 0; d < 3; ++d)
+      base[d] = Shape::lowest((x[3 * p + d] - g.origin[d]) * inv_h, hw ? hw[3 * p + d] * inv_h : 0.0);
     key[p] = SparseGrid::key_of_node(base[0], base[1], base[2]);
   }
 }
@@ -40,7 +40,7 @@ void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid
   if (stencil.shape == ShapeFunction::linear)
     owner_keys<LinearShape>(particles, grid.geometry(), nullptr, bins.key);
   else
-    owner_keys<GimpShape>(particles, grid.geometry(), stencil.half_width, bins.key);
+    owner_keys<GimpShape>(particles, grid.geometry(), stencil.half_width, bins.key);  // uGIMP, cpGIMP
 
   // Owner blocks in order of first appearance. Particles are stored mostly in block order, so
   // consecutive particles usually share a key and skip the hash lookup.

@@ -26,7 +26,7 @@ struct ParticleBins {
   std::size_t bytes() const;
 };
 
-// Per-particle GIMP half-width in metres, or nullptr for linear shape functions.
+// Per-particle GIMP half-widths (3 per particle, metres), or nullptr for linear shape functions.
 struct StencilSource {
   ShapeFunction shape = ShapeFunction::linear;
   const std::vector<double>* half_width = nullptr;

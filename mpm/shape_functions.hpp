@@ -9,7 +9,12 @@
 
 namespace hvi::mpm {
 
-enum class ShapeFunction { linear, gimp };
+enum class ShapeFunction {
+  linear,  // hat functions (standard MPM)
+  gimp,    // uGIMP: particle domains keep their initial size
+  cpgimp,  // GIMP with axis-aligned domains that stretch with the flow: a_d <- a_d (1 + dt L_dd)
+};
+inline bool is_gimp(ShapeFunction s) { return s != ShapeFunction::linear; }
 
 // Standard MPM hat functions: N = 1 - |s - i| for |s - i| < 1 (the paper's choice, Sec. 2.3).
 struct LinearShape {
@@ -57,22 +62,5 @@ struct GimpShape {
   }
 };
 
-// The 3D stencil of one particle: lowest node per axis and the 1D weights and derivatives
-// (derivatives in 1/cell; multiply by 1/h for 1/m).
-template <class Shape>
-struct Stencil {
-  static constexpr int width = Shape::width;
-  int base[3];
-  double N[3][width];
-  double dN[3][width];
-
-  // s: particle position in cell units; a: GIMP half-width in cells (ignored for linear).
-  void evaluate(const double s[3], double a) {
-    for (int d = 0; d < 3; ++d) {
-      base[d] = Shape::lowest(s[d], a);
-      Shape::weights(s[d], base[d], a, N[d], dN[d]);
-    }
-  }
-};
 
 }  // namespace hvi::mpm

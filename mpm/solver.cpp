@@ -28,17 +28,19 @@ TransferContext Solver::transfer_context() const {
 
 void Solver::initialise() {
   for (const auto& m : materials_) m->declare_fields(particles_);
-  if (settings_.shape == ShapeFunction::gimp) {
-    // uGIMP: a particle's domain is the cube of its initial volume, half-width a = V0^(1/3) / 2.
-    half_width_ = &particles_.add_field("gimp_half_width", FieldKind::scalar, "m", 0.0, false);
+  if (is_gimp(settings_.shape)) {
+    // A particle's domain: the half-widths its creator gave (the sampling spacing / 2 per axis),
+    // else the cube of its initial volume, a = V0^(1/3) / 2 on every axis.
+    half_width_ = &particles_.add_field(half_width_field, FieldKind::vector, "m", 0.0, false);
+    auto& a = *half_width_;
     for (std::size_t p = 0; p < particles_.size(); ++p) {
-      (*half_width_)[p] = 0.5 * std::cbrt(particles_.volume0[p]);
-      if ((*half_width_)[p] > 0.5 * geometry_.cell_size * (1.0 + 1e-12))
-        throw SolverError(fmt::format(
-            "GIMP needs particles no larger than a cell: particle {} (body '{}') has size {:.4g} m "
-            "but the cell is {:.4g} m; use more particles per cell",
-            particles_.id[p], body_names_.at(particles_.body[p]), 2 * (*half_width_)[p],
-            geometry_.cell_size));
+      if (a[3 * p] == 0.0) a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
+      for (int d = 0; d < 3; ++d)
+        if (a[3 * p + d] > 0.5 * geometry_.cell_size * (1.0 + 1e-12))
+          throw SolverError(fmt::format(
+              "GIMP needs particles no larger than a cell: particle {} (body '{}') has size {:.4g} m "
+              "but the cell is {:.4g} m; use more particles per cell",
+              particles_.id[p], body_names_.at(particles_.body[p]), 2 * a[3 * p + d], geometry_.cell_size));
     }
   }
   for (std::size_t p = 0; p < particles_.size(); ++p)
@@ -60,8 +62,7 @@ void Solver::initialise() {
 
 void Solver::restore(const SolverState& state) {
   for (const auto& m : materials_) m->declare_fields(particles_);
-  if (settings_.shape == ShapeFunction::gimp)
-    half_width_ = &particles_.field("gimp_half_width");
+  if (is_gimp(settings_.shape)) half_width_ = &particles_.field(half_width_field);
   compute_material_ranges();
   state_ = state;
 }
@@ -184,8 +185,24 @@ void Solver::grid_to_particles(bool remap) {
 }
 
 void Solver::compute_velocity_gradient(NodalVelocity which) {
-  auto t = timer_.scope("velocity gradient");
-  mpm::velocity_gradient(particles_, bins_, grid_, transfer_context(), which);
+  {
+    auto t = timer_.scope("velocity gradient");
+    mpm::velocity_gradient(particles_, bins_, grid_, transfer_context(), which);
+  }
+  if (settings_.shape == ShapeFunction::cpgimp) stretch_particle_domains();
+}
+
+// cpGIMP: the axis-aligned domain follows the stretch along each axis, a_d <- a_d (1 + dt L_dd),
+// kept between 1e-3 h (a domain never vanishes) and h / 2 (the three-node stencil's limit).
+void Solver::stretch_particle_domains() {
+  auto t = timer_.scope("stretch particle domains");
+  double* a = half_width_->data();
+  const double* L = particles_.velocity_gradient.data();
+  const double lo = 1e-3 * geometry_.cell_size, hi = 0.5 * geometry_.cell_size, dt = dt_;
+  const auto n = static_cast<std::int64_t>(particles_.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p)
+    for (int d = 0; d < 3; ++d) a[3 * p + d] = std::clamp(a[3 * p + d] * (1.0 + dt * L[9 * p + 4 * d]), lo, hi);
 }
 
 void Solver::update_stress() {

@@ -81,6 +81,10 @@ struct SolverState {
 
 class Solver {
  public:
+  // Per-particle GIMP domain half-widths (3 per particle, m); a creator may set them (sampling
+  // spacing / 2 per axis), else they follow from the particle volume.
+  static constexpr const char* half_width_field = "gimp_half_width";
+
   Solver(GridGeometry grid, SolverSettings settings, std::vector<std::unique_ptr<Material>> materials,
          std::vector<std::string> body_names, std::vector<GridBoundary> boundaries);
 
@@ -124,6 +128,7 @@ class Solver {
   void update_remapped_grid();
   void grid_to_particles(bool remap);
   void compute_velocity_gradient(NodalVelocity which);
+  void stretch_particle_domains();
   void update_stress();
   void update_positions();
   void remove_escaped_particles();

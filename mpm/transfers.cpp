@@ -15,12 +15,14 @@ struct NodeStencil {
   int node_offset[3][W];  // local node index contribution per axis
   int block_bit[3][W];    // neighbour bit per axis
 
-  void evaluate(const double* x, const GridGeometry& g, double inv_h, double a,
+  // a: GIMP half-width per axis in cells (nullptr for linear shape functions).
+  void evaluate(const double* x, const GridGeometry& g, double inv_h, const double* a,
                 const std::array<int, 3>& block_origin) {
     for (int d = 0; d < 3; ++d) {
       const double s = (x[d] - g.origin[d]) * inv_h;
-      const int base = Shape::lowest(s, a);
-      Shape::weights(s, base, a, N[d], dN[d]);
+      const double ad = a ? a[d] : 0.0;
+      const int base = Shape::lowest(s, ad);
+      Shape::weights(s, base, ad, N[d], dN[d]);
       static constexpr int stride[3] = {1, SparseGrid::block_edge,
                                         SparseGrid::block_edge * SparseGrid::block_edge};
       for (int k = 0; k < W; ++k) {
@@ -52,8 +54,13 @@ struct NodeStencil {
 struct Setup {
   const GridGeometry& g;
   double inv_h;
-  const double* half_width;
-  double a(std::size_t p) const { return half_width ? half_width[p] * inv_h : 0.0; }
+  const double* half_width;  // 3 per particle, m
+  // Half-widths of particle p in cells, per axis, in `out`; nullptr for linear shape functions.
+  const double* a(std::size_t p, double* out) const {
+    if (!half_width) return nullptr;
+    for (int d = 0; d < 3; ++d) out[d] = half_width[3 * p + d] * inv_h;
+    return out;
+  }
 };
 
 template <class Shape, Scatter What>
@@ -72,7 +79,8 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
       NodeStencil<Shape> st;
       for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
         const std::uint32_t p = bins.order[k];
-        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p), origin);
+        double a_cells[3];
+        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
         const double m = P.mass[p];
         const double* v = &P.velocity[3 * p];
         const double mv[3] = {m * v[0], m * v[1], m * v[2]};
@@ -103,7 +111,8 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
 template <class Shape, bool Remap, class Blocks>
 void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks, const std::array<int, 3>& origin,
                         const Setup& s, double flip, NodeStencil<Shape>& st) {
-  st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p), origin);
+  double a_cells[3];
+        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
   double dv[3] = {0, 0, 0}, vg[3] = {0, 0, 0};
   st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
     for (int d = 0; d < 3; ++d) {
@@ -170,7 +179,8 @@ void gather_gradient(Particles& P, const ParticleBins& bins, const SparseGrid& g
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
       const std::uint32_t p = bins.order[k];
-      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p), origin);
+      double a_cells[3];
+        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
       double L[9] = {};
       st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
         double v[3];

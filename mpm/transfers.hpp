@@ -11,7 +11,7 @@ namespace hvi::mpm {
 
 struct TransferContext {
   ShapeFunction shape = ShapeFunction::linear;
-  const std::vector<double>* half_width = nullptr;  // GIMP particle half-width, m
+  const std::vector<double>* half_width = nullptr;  // GIMP particle half-widths, 3 per particle, m
   double flip = 1.0;  // FLIP fraction of the particle velocity update (1 FLIP, 0 PIC)
   double dt = 0.0;
 };

@@ -44,7 +44,9 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
   geometry.cells = g.cells;
 
   mpm::SolverSettings settings;
-  settings.shape = g.shape_function == "gimp" ? mpm::ShapeFunction::gimp : mpm::ShapeFunction::linear;
+  settings.shape = g.shape_function == "gimp"     ? mpm::ShapeFunction::gimp
+                   : g.shape_function == "cpgimp" ? mpm::ShapeFunction::cpgimp
+                                                  : mpm::ShapeFunction::linear;
   settings.scheme = g.scheme == "usl"   ? mpm::UpdateScheme::usl
                     : g.scheme == "usf" ? mpm::UpdateScheme::usf
                                         : mpm::UpdateScheme::musl;

@@ -33,6 +33,7 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
   const auto counts = hvi::driver::add_bodies(scene, *solver);
   solver->initialise();
   fmt::print("{}: valid{}\n", path, scene.title.empty() ? "" : " — " + scene.title);
+  for (const auto& w : scene.warnings) fmt::print("  warning: {}\n", w);
   const auto& g = scene.grid;
   fmt::print("  grid: {} x {} x {} cells of {:.4g} m from ({:.4g}, {:.4g}, {:.4g}) m; {} shape functions, {}, flip {}, cfl {}\n",
              g.cells[0], g.cells[1], g.cells[2], g.cell_size, g.lower[0], g.lower[1], g.lower[2],

@@ -176,6 +176,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                s.step_count(), s.time(), particle_count, threads);
   } else {
     fmt::print("hvi: {}{}\n", scene.file, scene.title.empty() ? "" : " — " + scene.title);
+    for (const auto& w : scene.warnings) fmt::print("  warning: {}\n", w);
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
       fmt::print("  body '{}': {} particles, material '{}'\n", scene.bodies[b].name, counts[b],
                  scene.materials[scene.bodies[b].material].name);

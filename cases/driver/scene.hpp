@@ -94,6 +94,7 @@ struct Scene {
   std::vector<MaterialSettings> materials;
   std::vector<BodySettings> bodies;
   toml::table resolved;  // every key, defaults filled, SI values: written next to the output
+  std::vector<std::string> warnings;  // likely mistakes that are not errors ("no EOS at 5 km/s")
 };
 
 // Reads, overrides, validates and resolves a scene file. Throws SceneError.

@@ -36,9 +36,10 @@ TableSpec grid_table() {
       .vector_required("upper", dims::length,
                        "Upper corner of the domain (rounded up to a whole number of cells)")
       .quantity_required("cell_size", dims::length, positive(), "Edge of a cubic grid cell")
-      .choice("shape_function", {"gimp", "linear"}, "gimp",
-              "Grid shape functions: gimp (uGIMP) or linear (standard MPM, the paper's; loses shock "
-              "pressure to cell-crossing noise, see README)")
+      .choice("shape_function", {"cpgimp", "gimp", "linear"}, "cpgimp",
+              "Grid shape functions: cpgimp (GIMP whose particle domains stretch with the flow), gimp "
+              "(uGIMP, fixed domains) or linear (standard MPM, the paper's; loses shock pressure to "
+              "cell-crossing noise, see README)")
       .choice("scheme", {"musl", "usl", "usf"}, "musl",
               "Update scheme: musl, usl, or usf (update stress first, the paper's flowchart)")
       .number("flip", closed(0, 1), 1.0,

@@ -73,7 +73,7 @@ TEST(Scene, ResolvesDefaultsAndUnits) {
   EXPECT_DOUBLE_EQ(s.checkpoint_interval, 1e-6);   // the snapshot interval
   EXPECT_EQ(s.grid.cells[0], 21);                  // 10.2 mm rounds up to 21 cells of 0.5 mm
   EXPECT_DOUBLE_EQ(s.grid.upper[0], 10.5e-3);
-  EXPECT_EQ(s.grid.shape_function, "gimp");
+  EXPECT_EQ(s.grid.shape_function, "cpgimp");
   EXPECT_EQ(s.grid.scheme, "musl");
   EXPECT_DOUBLE_EQ(s.materials[0].models.poisson_ratio, 0.33);
   EXPECT_DOUBLE_EQ(s.materials[0].models.density, 2700.0);

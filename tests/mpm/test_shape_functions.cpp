@@ -68,6 +68,15 @@ TEST(ShapeFunctions, GimpPartitionOfUnity1D) {
   }
 }
 
+// The 1D weights and derivatives of a 3D stencil, as the transfers evaluate them.
+template <class Shape>
+struct Stencil {
+  double N[3][Shape::width], dN[3][Shape::width];
+  void evaluate(const double* s, double a) {
+    for (int d = 0; d < 3; ++d) Shape::weights(s[d], Shape::lowest(s[d], a), a, N[d], dN[d]);
+  }
+};
+
 template <class Shape>
 void check_tensor_product(double a, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

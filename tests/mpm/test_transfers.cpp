@@ -17,7 +17,7 @@ namespace {
 
 struct Cloud {
   Particles P;
-  std::vector<double> half_width;  // m
+  std::vector<double> half_width;  // m, 3 per particle
 };
 
 // n particles uniformly at random in [lo, hi)^3 (m), masses in [1, 2) mg, velocities with a
@@ -27,7 +27,7 @@ void fill_cloud(Cloud& c, std::size_t n, double lo, double hi, double h, std::ui
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   c.P.resize(n);
-  c.half_width.resize(n);
+  c.half_width.resize(3 * n);
   for (std::size_t p = 0; p < n; ++p) {
     for (int d = 0; d < 3; ++d) {
       c.P.position[3 * p + d] = lo + (hi - lo) * u(rng);
@@ -36,7 +36,7 @@ void fill_cloud(Cloud& c, std::size_t n, double lo, double hi, double h, std::ui
     c.P.mass[p] = 1e-6 * (1.0 + u(rng));
     const double size = h * (0.3 + 0.7 * u(rng));  // particle edge, m
     c.P.volume0[p] = c.P.volume[p] = size * size * size;
-    c.half_width[p] = 0.5 * size;
+    for (int d = 0; d < 3; ++d) c.half_width[3 * p + d] = 0.5 * size;
     for (int k = 0; k < 6; ++k) c.P.stress[6 * p + k] = 1e8 * (2.0 * u(rng) - 1.0);
     c.P.id[p] = static_cast<std::int64_t>(p);
   }
@@ -141,13 +141,13 @@ std::size_t blocks_for_two_clusters(int separation, ShapeFunction shape, std::ui
   fill_cloud(c, 200, 9.0, 11.0, h, seed);
   const std::size_t n = c.P.size();
   c.P.resize(2 * n);
-  c.half_width.resize(2 * n);
+  c.half_width.resize(6 * n);
   for (std::size_t p = 0; p < n; ++p) {
     for (int d = 0; d < 3; ++d)
       c.P.position[3 * (n + p) + d] = c.P.position[3 * p + d] + separation;
     c.P.mass[n + p] = c.P.mass[p];
     c.P.volume[n + p] = c.P.volume0[n + p] = c.P.volume[p];
-    c.half_width[n + p] = c.half_width[p];
+    for (int d = 0; d < 3; ++d) c.half_width[3 * (n + p) + d] = c.half_width[3 * p + d];
   }
   SparseGrid grid(g);
   ParticleBins bins;
