@@ -1,0 +1,102 @@
+// A scene simulates only the effects it asks for: a model a material does not name declares no
+// particle field (so none is allocated or written) and runs no phase (so none is timed).
+#include <filesystem>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include "cases/driver/build_solver.hpp"
+#include "cases/driver/scene.hpp"
+#include "mpm/io/hdf5_file.hpp"
+#include "mpm/io/snapshot_writer.hpp"
+
+namespace hvi {
+namespace {
+
+// Runs 5 steps of the plate-impact scene with the given material models and returns the
+// particle fields, the timed phases and the datasets of a snapshot.
+struct Effects {
+  std::set<std::string> fields, phases, datasets;
+};
+
+Effects run_with(const std::vector<std::string>& models) {
+  omp_set_num_threads(1);
+  // Every model key set: what `models` does not name is switched off.
+  std::vector<std::string> overrides = {"strength=none",  "eos=none",     "viscosity=none",
+                                        "damage=none",    "failure=none", "heating=none"};
+  for (const auto& m : models) overrides.push_back(m);
+  for (auto& o : overrides) o = "material.Al6061." + o;
+  const auto scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/plate_impact.toml", overrides);
+  auto solver = driver::make_solver(scene);
+  driver::add_bodies(scene, *solver);
+  solver->initialise();
+  for (int k = 0; k < 5; ++k) solver->step();
+  Effects e;
+  for (const auto& f : solver->particles().real_fields()) e.fields.insert(f.name);
+  for (const auto& p : solver->timer().entries()) e.phases.insert(p.name);
+  const auto dir = std::filesystem::path(testing::TempDir()) / "hvi_effects";
+  std::filesystem::remove_all(dir);
+  mpm::io::SnapshotWriter writer(dir);
+  writer.write(*solver);
+  mpm::io::Hdf5File file((dir / mpm::io::SnapshotWriter::file_name(0)).string(), mpm::io::Hdf5File::Mode::read);
+  for (const auto& d : file.dataset_names()) e.datasets.insert(d);
+  return e;
+}
+
+struct Model {
+  std::string key;                   // scene setting that names it
+  std::vector<std::string> fields;   // particle fields it owns (also snapshot datasets)
+  std::string phase;                 // its row in the timing table
+};
+
+const std::vector<Model> models = {
+    {"strength=johnson-cook", {"plastic_strain", "plastic_strain_rate", "plastic_work"}, "strength: johnson-cook"},
+    {"damage=johnson-cook", {"damage", "failed"}, "damage: johnson-cook"},
+    {"failure=max-principal-stress", {"failed"}, "failure: max-principal-stress"},
+    {"heating=adiabatic", {"temperature"}, "heating: adiabatic"},
+    {"viscosity=bulk", {"viscous_work"}, "eos: mie-gruneisen + viscosity"},
+};
+
+// The scene names every model; taking out one removes exactly its fields and phase.
+TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
+  std::vector<std::string> all = {"strength=johnson-cook", "eos=mie-gruneisen", "viscosity=bulk",
+                                  "damage=johnson-cook", "heating=adiabatic",
+                                  "max_principal_stress.limit=1.5e9", "failure=max-principal-stress"};
+  const Effects full = run_with(all);
+  for (const auto& m : models) {
+    for (const auto& f : m.fields) {
+      EXPECT_TRUE(full.fields.count(f)) << f;
+      EXPECT_TRUE(full.datasets.count(f)) << f;
+    }
+    EXPECT_TRUE(full.phases.count(m.phase)) << m.phase;
+  }
+  // Drop each model in turn (damage and heating need johnson-cook strength, so keep it for them).
+  for (const auto& m : models) {
+    SCOPED_TRACE(m.key);
+    std::vector<std::string> without;
+    for (const auto& k : all) {
+      if (k == m.key) continue;
+      if (m.key == "failure=max-principal-stress" && k.rfind("max_principal_stress", 0) == 0) continue;
+      without.push_back(k);
+    }
+    if (m.key == "strength=johnson-cook") without = {"eos=mie-gruneisen", "viscosity=bulk"};
+    const Effects e = run_with(without);
+    EXPECT_FALSE(e.phases.count(m.phase)) << m.phase;
+    for (const auto& f : m.fields) {
+      // "failed" belongs to both damage and failure: it goes only when neither is named.
+      const bool shared = f == "failed" && (m.key == "damage=johnson-cook" || m.key == "failure=max-principal-stress");
+      if (shared) continue;
+      EXPECT_FALSE(e.fields.count(f)) << f;
+      EXPECT_FALSE(e.datasets.count(f)) << f;
+    }
+  }
+  // With neither damage nor failure there is no failure state at all.
+  const Effects plain = run_with({"strength=johnson-cook"});
+  EXPECT_FALSE(plain.fields.count("failed"));
+  EXPECT_TRUE(plain.phases.count("strength: johnson-cook"));
+  EXPECT_TRUE(plain.phases.count("eos: elastic bulk"));
+}
+
+}  // namespace
+}  // namespace hvi

@@ -1,0 +1,100 @@
+// Materials in scenes: library values fill what the scene does not give and are written to the
+// resolved scene; a missing parameter and a parameter table for a model the material does not
+// name are located errors; the EOS warning appears when a fast impact meets a material without one.
+#include <gtest/gtest.h>
+
+#include "cases/driver/scene.hpp"
+
+namespace hvi::scene {
+namespace {
+
+std::string scene_with(const std::string& material, const std::string& speed = "100 m/s") {
+  return R"(
+[run]
+end_time = "1 us"
+[grid]
+lower = ["0 mm", "0 mm", "0 mm"]
+upper = ["4 mm", "4 mm", "4 mm"]
+cell_size = "0.5 mm"
+[[material]]
+)" + material + R"(
+[[body]]
+name = "b"
+material = "m"
+velocity = [")" + speed + R"(", "0 m/s", "0 m/s"]
+sphere = { center = ["2 mm", "2 mm", "2 mm"], radius = "1 mm" }
+)";
+}
+
+TEST(SceneMaterials, LibraryFillsParametersAndTheResolvedSceneRecordsThem) {
+  const Scene s = parse_scene(scene_with(R"(name = "m"
+library = "Al6061"
+strength = "johnson-cook"
+eos = "mie-gruneisen"
+johnson_cook = { A = "300 MPa" })"), "scene.toml");
+  const auto& h = s.materials[0].models;
+  EXPECT_DOUBLE_EQ(h.johnson_cook->A, 300e6);  // the scene's value wins
+  EXPECT_DOUBLE_EQ(h.johnson_cook->B, 426e6);  // from the library (paper Table 4)
+  EXPECT_DOUBLE_EQ(h.mie_gruneisen->c0, 5350.0);
+  EXPECT_DOUBLE_EQ(h.density, 2770.0);
+  EXPECT_FALSE(h.damage.has_value());  // not named: no damage, although the library has D1..D5
+  const auto& m = *s.resolved["material"][0].as_table();
+  EXPECT_DOUBLE_EQ(m["johnson_cook"]["B"].value<double>().value(), 426e6);
+  EXPECT_DOUBLE_EQ(m["mie_gruneisen"]["gamma0"].value<double>().value(), 2.0);
+  EXPECT_FALSE(m.contains("johnson_cook_damage"));
+  EXPECT_EQ(s.materials[0].effects(), "johnson-cook strength, mie-gruneisen eos");
+}
+
+TEST(SceneMaterials, MissingParameterWithoutLibraryIsAnError) {
+  try {
+    parse_scene(scene_with(R"(name = "m"
+density = "2.7 g/cm^3"
+youngs_modulus = "70 GPa"
+poisson_ratio = 0.3
+strength = "johnson-cook"
+johnson_cook = { A = "300 MPa", B = "400 MPa", n = 0.3, C = 0.01 })"), "scene.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    bool found = false;
+    for (const auto& d : e.diagnostics())
+      if (d.key == "material.m.johnson_cook" && d.message.find("missing parameter 'm'") != std::string::npos) found = true;
+    EXPECT_TRUE(found) << e.diagnostics().front().text();
+  }
+}
+
+TEST(SceneMaterials, ParametersForAModelNotNamedAreRefused) {
+  try {
+    parse_scene(scene_with(R"(name = "m"
+library = "Al6061"
+mie_gruneisen = { c0 = "5 km/s" })"), "scene.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    const auto& d = e.diagnostics().front();
+    EXPECT_EQ(d.key, "material.m.mie_gruneisen");
+    EXPECT_EQ(d.line, 11);
+    EXPECT_NE(d.message.find("eos = \"mie-gruneisen\""), std::string::npos) << d.text();
+  }
+}
+
+TEST(SceneMaterials, LibraryNameTypoGetsASuggestion) {
+  try {
+    parse_scene(scene_with("name = \"m\"\nlibrary = \"Al6016\""), "scene.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(e.diagnostics().front().text().find("did you mean \"Al6061\"?"), std::string::npos)
+        << e.diagnostics().front().text();
+  }
+}
+
+TEST(SceneMaterials, FastImpactWithoutEquationOfStateWarns) {
+  const std::string elastic = "name = \"m\"\nlibrary = \"Al6061\"";
+  // Bulk sound speed of Al6061 from E = 75 GPa, nu = 0.33: sqrt(K / rho) = 5.15 km/s; 5% is 258 m/s.
+  EXPECT_TRUE(parse_scene(scene_with(elastic, "200 m/s"), "s.toml").warnings.empty());
+  const Scene fast = parse_scene(scene_with(elastic, "4.5 km/s"), "s.toml");
+  ASSERT_EQ(fast.warnings.size(), 1u);
+  EXPECT_NE(fast.warnings[0].find("names no equation of state"), std::string::npos) << fast.warnings[0];
+  EXPECT_TRUE(parse_scene(scene_with(elastic + "\neos = \"mie-gruneisen\"", "4.5 km/s"), "s.toml").warnings.empty());
+}
+
+}  // namespace
+}  // namespace hvi::scene
