@@ -14,6 +14,7 @@ struct NodeStencil {
   double N[3][W], dN[3][W];
   int node_offset[3][W];  // local node index contribution per axis
   int block_bit[3][W];    // neighbour bit per axis
+  int first[3], last[3];  // the nodes with nonzero weight per axis (GIMP: 2 or 3 of the 3)
 
   // a: GIMP half-width per axis in cells (nullptr for linear shape functions).
   void evaluate(const double* x, const GridGeometry& g, double inv_h, const double* a,
@@ -30,19 +31,26 @@ struct NodeStencil {
         block_bit[d][k] = (l / SparseGrid::block_edge) << d;
         node_offset[d][k] = (l % SparseGrid::block_edge) * stride[d];
       }
+      // Skipping nodes of zero weight adds nothing to any sum, so results are unchanged.
+      first[d] = 0;
+      last[d] = W - 1;
+      if constexpr (W > 2) {
+        while (N[d][first[d]] == 0.0 && dN[d][first[d]] == 0.0) ++first[d];
+        while (N[d][last[d]] == 0.0 && dN[d][last[d]] == 0.0) --last[d];
+      }
     }
   }
 
   // f(node, weight, gradient[3]) for every node of the stencil; gradient in 1/m.
   template <class Node, class F>
   void for_each(Node* const* blocks, double inv_h, F&& f) const {
-    for (int kz = 0; kz < W; ++kz)
-      for (int ky = 0; ky < W; ++ky) {
+    for (int kz = first[2]; kz <= last[2]; ++kz)
+      for (int ky = first[1]; ky <= last[1]; ++ky) {
         const double nyz = N[1][ky] * N[2][kz];
         const double dy = dN[1][ky] * N[2][kz] * inv_h, dz = N[1][ky] * dN[2][kz] * inv_h;
         const int bit_yz = block_bit[1][ky] | block_bit[2][kz];
         const int off_yz = node_offset[1][ky] + node_offset[2][kz];
-        for (int kx = 0; kx < W; ++kx) {
+        for (int kx = first[0]; kx <= last[0]; ++kx) {
           Node* node = blocks[block_bit[0][kx] | bit_yz] + (node_offset[0][kx] + off_yz);
           const double grad[3] = {dN[0][kx] * nyz * inv_h, N[0][kx] * dy, N[0][kx] * dz};
           f(*node, N[0][kx] * nyz, grad);
