@@ -44,8 +44,9 @@ TableSpec grid_table() {
               "Update scheme: musl, usl, or usf (update stress first, the paper's flowchart)")
       .number("flip", closed(0, 1), 1.0,
               "FLIP fraction of the particle velocity update (1: FLIP, as the paper; 0: PIC)")
-      .number("cfl", left_open(0, 1), 0.5,
-              "Courant number: dt = cfl h / max(sound speed + particle speed)")
+      .number("cfl", left_open(0, 0.9), 0.5,
+              "Courant number: dt = cfl h / max(sound speed + particle speed). At most 0.9: dt comes "
+              "from the previous step's sound speed and a shock stiffens the material within a step")
       .optional_quantity("max_time_step", dims::time, positive(), "Upper bound on the time step");
   return t;
 }

@@ -114,7 +114,15 @@ TEST(Scene, OutOfRangeValueNamesTheRange) {
   const Diagnostic d = first_error(replace(valid, "cell_size = \"0.5 mm\"", "cell_size = \"0.5 mm\"\ncfl = 1.5"));
   EXPECT_EQ(d.line, 9);
   EXPECT_EQ(d.key, "grid.cfl");
-  EXPECT_TRUE(contains(d.text(), "(0, 1]")) << d.text();
+  EXPECT_TRUE(contains(d.text(), "(0, 0.9]")) << d.text();
+}
+
+// A time step at the CFL limit is refused, with the reason in the key's description.
+TEST(Scene, CflAtTheStabilityLimitIsRefused) {
+  const Diagnostic d = first_error(valid, {"grid.cfl=1.0"});
+  EXPECT_EQ(d.key, "grid.cfl");
+  EXPECT_TRUE(contains(d.text(), "expected a number in (0, 0.9]")) << d.text();
+  EXPECT_NO_THROW(parse_scene(valid, "scene.toml", {"grid.cfl=0.9"}));
 }
 
 TEST(Scene, MissingRequiredKeyIsNamedAtItsTable) {
