@@ -189,13 +189,17 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     output.advance(s.time());
   }
 
+  std::int64_t last_checkpoint_step = s.step_count();
   auto checkpoint = [&] {
     auto t = timer.scope("write checkpoint");
+    last_checkpoint_step = s.step_count();
     mpm::io::write_checkpoint(dir / "checkpoint.h5", s,
                               {{"next_output_time", output.next},
                                {"next_checkpoint_time", checkpoints.next},
                                {"initial_energy", initial_energy}});
   };
+  // A checkpoint exists from the start, so a run that fails always leaves one from before.
+  if (!options.resume) checkpoint();
 
   interrupt_requested = false;
   auto previous_handler = std::signal(SIGINT, on_interrupt);
@@ -235,7 +239,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   } catch (const mpm::SolverError& e) {
     progress.finish();
     fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
-    fmt::print(stderr, "hvi: the last checkpoint in {} holds the state before the failure\n", dir.string());
+    // The state at the failure, for a look in ParaView or h5py (not a restart point).
+    mpm::io::write_snapshot_file(dir / "failure.h5", s);
+    fmt::print(stderr, "hvi: {} holds the state at the failure; checkpoint.h5 (step {}) the last state before it\n",
+               (dir / "failure.h5").string(), last_checkpoint_step);
     std::signal(SIGINT, previous_handler);
     return run_failed;
   }

@@ -30,18 +30,17 @@ std::vector<T> in_order(const std::vector<T>& field, int nc, const std::vector<s
   return out;
 }
 
-}  // namespace
-
-void SnapshotWriter::write(const Solver& solver) {
+// Writes the snapshot datasets of `solver` to `path`; returns the attributes in order.
+std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const std::filesystem::path& path,
+                                                                         const Solver& solver) {
   const Particles& P = solver.particles();
   const std::size_t n = P.size();
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return P.id[a] < P.id[b]; });
 
-  Entry entry{file_name(entries_.size()), solver.time(), solver.step_count(), n, {}};
-  fs::create_directories(directory_ / "snapshots");
-  Hdf5File file((directory_ / entry.file).string(), Hdf5File::Mode::create);
+  std::vector<std::pair<std::string, std::pair<int, bool>>> attributes;  // name, (components, integer)
+  Hdf5File file(path.string(), Hdf5File::Mode::create);
   file.write_attribute("time", solver.time());
   file.write_attribute("step", static_cast<std::int64_t>(solver.step_count()));
 
@@ -50,7 +49,7 @@ void SnapshotWriter::write(const Solver& solver) {
     if (!f.output || f.scratch) continue;
     const int nc = components(f.kind);
     file.write(f.name, in_order(*f.data, nc, order).data(), n, nc);
-    entry.attributes.push_back({f.name, nc, false});
+    attributes.push_back({f.name, {nc, false}});
   }
   // Derived fields a hydrocode user expects to plot.
   std::vector<double> density(n), pressure(n), mises(n), ratio(n);
@@ -65,16 +64,28 @@ void SnapshotWriter::write(const Solver& solver) {
                                    std::pair{"von_mises_stress", &mises},
                                    std::pair{"volume_ratio", &ratio}}) {
     file.write(name, data->data(), n, 1);
-    entry.attributes.push_back({name, 1, false});
+    attributes.push_back({name, {1, false}});
   }
   for (const auto& f : P.int_fields()) {
     file.write(f.name, in_order(*f.data, 1, order).data(), n, 1);
-    entry.attributes.push_back({f.name, 1, true});
+    attributes.push_back({f.name, {1, true}});
   }
   // The attribute order, so that a resumed run can rebuild the same index.
   std::string names;
-  for (const auto& a : entry.attributes) names += (names.empty() ? "" : ",") + a.name;
+  for (const auto& a : attributes) names += (names.empty() ? "" : ",") + a.first;
   file.write_attribute("fields", names);
+  return attributes;
+}
+
+}  // namespace
+
+void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) { write_datasets(path, solver); }
+
+void SnapshotWriter::write(const Solver& solver) {
+  Entry entry{file_name(entries_.size()), solver.time(), solver.step_count(), solver.particles().size(), {}};
+  fs::create_directories(directory_ / "snapshots");
+  for (const auto& [name, shape] : write_datasets(directory_ / entry.file, solver))
+    entry.attributes.push_back({name, shape.first, shape.second});
   entries_.push_back(std::move(entry));
   write_index();
 }

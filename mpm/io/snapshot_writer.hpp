@@ -11,6 +11,9 @@
 
 namespace hvi::mpm::io {
 
+// Writes one snapshot file (the datasets of a SnapshotWriter snapshot, no index).
+void write_snapshot_file(const std::filesystem::path& path, const Solver& solver);
+
 class SnapshotWriter {
  public:
   explicit SnapshotWriter(std::filesystem::path run_directory);

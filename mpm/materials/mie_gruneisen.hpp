@@ -4,9 +4,13 @@
 //   mu = rho / rho0 - 1
 //   p_H = rho0 c0^2 mu (1 + mu) / [1 - (s - 1) mu]^2   (mu >= 0; the paper prints c0 for c0^2)
 //   p_H = rho0 c0^2 mu                                   (mu < 0, tension)
-//   p   = p_H (1 - Gamma mu / 2) + Gamma rho e,   Gamma rho = Gamma0 rho0,
+//   p   = p_H (1 - Gamma mu / 2) + Gamma rho e,   Gamma rho = Gamma0 rho0   (mu >= 0)
+//   p   = p_H + Gamma0 rho0 e                                              (mu < 0)
 // with e the current specific internal energy (J/kg). The paper's "gamma0 E0" is read as
 // Gamma0 rho0 e: E0 the internal energy per unit reference volume, integrated per particle.
+// In tension the (1 - Gamma mu / 2) factor is left out, as LS-DYNA's *EOS_GRUNEISEN does: with
+// Gamma = Gamma0 rho0 / rho it diverges as rho -> 0 (expanded debris at 10 km/s reached
+// p = -80 rho0 c0^2 and a sound speed of 440 km/s with it).
 #include <algorithm>
 #include <cmath>
 
@@ -39,6 +43,7 @@ struct MieGruneisen {
   // Pressure = A(rho) + B e: the part independent of e, and B = Gamma0 rho0.
   double cold_part(double rho) const {
     const double mu = rho / reference_density - 1.0;
+    if (mu < 0.0) return hugoniot_pressure(mu);
     const double gamma = gamma0 / (1.0 + mu);  // Gamma = Gamma0 rho0 / rho
     return hugoniot_pressure(mu) * (1.0 - 0.5 * gamma * mu);
   }
@@ -49,8 +54,10 @@ struct MieGruneisen {
   // so that a state in tension keeps a meaningful time step.
   double bulk_sound_speed_squared(double rho, double p) const {
     const double mu = rho / reference_density - 1.0;
-    const double dp_dmu_e = hugoniot_slope(mu) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) -
-                            hugoniot_pressure(mu) * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
+    const double dp_dmu_e =
+        mu < 0.0 ? hugoniot_slope(mu)
+                 : hugoniot_slope(mu) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) -
+                       hugoniot_pressure(mu) * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
     const double c2 = dp_dmu_e / reference_density + p * energy_coefficient() / (rho * rho);
     return std::max(c2, 0.1 * c0 * c0);
   }

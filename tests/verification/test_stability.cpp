@@ -1,0 +1,135 @@
+// Hard cases stay numerically stable (cases/stability/, fast coarse versions here; the scenes'
+// own resolution is the `long` version). Each run must finish with no NaN or non-positive volume
+// (the solver stops with SolverError on either), keep kinetic + internal + dissipated + removed
+// energy within a stated bound of the initial energy, and conserve momentum, including what left
+// the grid, where no boundary acts.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include "tests/verification/scene_run.hpp"
+
+namespace hvi {
+namespace {
+
+struct Balance {
+  double energy_error;    // (E - E0) / E0
+  double momentum_error;  // |p - p0| / |p0|, removed material included
+  double mass_error;      // (m + m_removed - m0) / m0
+};
+
+Balance run_case(const std::string& file, const std::vector<std::string>& overrides, double end_time,
+                 test::SceneRun** keep = nullptr) {
+  static std::unique_ptr<test::SceneRun> last;
+  last = std::make_unique<test::SceneRun>(file, overrides);
+  test::SceneRun& run = *last;
+  const mpm::EnergyReport e0 = run.solver->energy();
+  EXPECT_NO_THROW(run.run_to(end_time));
+  const mpm::EnergyReport e = run.solver->energy();
+  double dp = 0, p0 = 0;
+  for (int d = 0; d < 3; ++d) {
+    dp += std::pow(e.momentum[d] + e.removed_momentum[d] - e0.momentum[d], 2);
+    p0 += e0.momentum[d] * e0.momentum[d];
+  }
+  if (keep) *keep = last.get();
+  const Balance b{e.total() / e0.total() - 1, std::sqrt(dp / p0), (e.mass + e.removed_mass) / e0.mass - 1};
+  std::printf("%s: energy %+.3f%%, momentum %.2e, mass %.2e, removed %lld particles (%.3g J)\n", file.c_str(),
+              100 * b.energy_error, b.momentum_error, b.mass_error,
+              static_cast<long long>(run.solver->removed().particles), e.removed);
+  return b;
+}
+
+// Momentum: the scatter, the nodal update and the FLIP gather conserve it to round-off; 1e-10 of
+// the initial momentum leaves room for ~1e4 steps of 1e-15 relative errors.
+constexpr double momentum_tolerance = 1e-10;
+
+TEST(Stability, AluminiumOnAluminiumAt10kmPerSecond) {
+  omp_set_num_threads(1);
+  test::SceneRun* run = nullptr;
+  const Balance b = run_case("stability/hypervelocity_10kms.toml", {"grid.cell_size=5e-4"}, 1.5e-6, &run);
+  // Measured +3.9% at this resolution (+1.2% at the scene's 0.25 mm cells): MPM's grid
+  // projection loses kinetic energy at strong shocks and the energy equation gains it back
+  // through the viscosity, not exactly. 5% bounds it.
+  EXPECT_LT(std::fabs(b.energy_error), 0.05);
+  EXPECT_LT(b.momentum_error, momentum_tolerance);
+  EXPECT_LT(std::fabs(b.mass_error), 1e-12);
+  EXPECT_GT(run->solver->removed().particles, 100);  // debris left the grid and was accounted
+}
+
+TEST(Stability, ObliqueImpactAt60Degrees) {
+  omp_set_num_threads(1);
+  const Balance b = run_case("stability/oblique_60deg.toml", {"grid.cell_size=5e-4"}, 2e-6);
+  EXPECT_LT(std::fabs(b.energy_error), 0.02);  // measured +0.3%
+  EXPECT_LT(b.momentum_error, momentum_tolerance);
+  EXPECT_LT(std::fabs(b.mass_error), 1e-12);
+}
+
+// The projectile far larger than a cell (6 cells in radius) and smaller than one (0.4 cell, 8
+// points at 4 per cell per axis), at 4.5 km/s.
+TEST(Stability, ProjectileLargerAndSmallerThanACell) {
+  omp_set_num_threads(1);
+  const std::vector<std::string> common = {"grid.cell_size=5e-4", "body.projectile.velocity=[0, 0, -4500]"};
+  auto with = [&](std::vector<std::string> extra) {
+    extra.insert(extra.begin(), common.begin(), common.end());
+    return extra;
+  };
+  const Balance large = run_case("stability/hypervelocity_10kms.toml",
+                                 with({"body.projectile.sphere.radius=3e-3", "body.projectile.sphere.center=[0, 0, 3.25e-3]",
+                                       "grid.upper=[6e-3, 6e-3, 7e-3]"}), 1e-6);
+  EXPECT_LT(std::fabs(large.energy_error), 0.03);  // measured +0.8%
+  EXPECT_LT(large.momentum_error, momentum_tolerance);
+  // A sub-cell projectile meets the plate through a few grid nodes: the grid compresses it
+  // before FLIP decelerates it, and energy is created (measured +19% at cfl 0.5, +2.3% at 0.1,
+  // +1.1% at 0.05: first order in dt). The scene warns about it; with the cfl it recommends the
+  // balance holds within 3%, and at the default it stays finite and bounded by 25%.
+  const std::vector<std::string> small = with({"body.projectile.sphere.radius=2e-4", "body.projectile.sphere.center=[0, 0, 0.5e-3]",
+                                               "body.projectile.particles_per_cell=4"});
+  const auto scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/stability/hypervelocity_10kms.toml", small);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("body 'projectile' is 0.8 cells across"), std::string::npos) << scene.warnings[0];
+  const Balance coarse_dt = run_case("stability/hypervelocity_10kms.toml", small, 1e-6);
+  EXPECT_LT(std::fabs(coarse_dt.energy_error), 0.25);
+  EXPECT_LT(coarse_dt.momentum_error, momentum_tolerance);
+  auto refined = small;
+  refined.push_back("grid.cfl=0.1");
+  const Balance fine_dt = run_case("stability/hypervelocity_10kms.toml", refined, 1e-6);
+  EXPECT_LT(std::fabs(fine_dt.energy_error), 0.03);
+  EXPECT_LT(fine_dt.momentum_error, momentum_tolerance);
+}
+
+// A plate one point thick at the coarsest grid (one point per cell, one cell thick).
+TEST(Stability, PlateOnePointThick) {
+  omp_set_num_threads(1);
+  const Balance b = run_case("stability/hypervelocity_10kms.toml",
+                             {"grid.cell_size=5e-4", "body.projectile.velocity=[0, 0, -4500]",
+                              "body.plate.particles_per_cell=1", "body.plate.box.lower=[-5e-3, -5e-3, -5e-4]"},
+                             1e-6);
+  EXPECT_LT(std::fabs(b.energy_error), 0.03);
+  EXPECT_LT(b.momentum_error, momentum_tolerance);
+}
+
+// Spall: the release waves meet inside the target, the tension reaches sigma_max and the target
+// fails in a layer; the spall layer flies off faster than the rest of the target.
+TEST(Stability, SpallOpensAGapWithoutDiverging) {
+  omp_set_num_threads(1);
+  test::SceneRun* run = nullptr;
+  const Balance b = run_case("stability/spall.toml", {}, 2e-6, &run);
+  EXPECT_LT(std::fabs(b.energy_error), 0.02);  // measured +0.5%
+  EXPECT_LT(b.momentum_error, momentum_tolerance);
+  const auto& P = run->particles();
+  const auto& failed = P.field("failed");
+  int failures = 0;
+  double v_rear = 0, v_middle = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    failures += failed[p] > 0;
+    const double x0 = P.position[3 * p];  // current position
+    if (x0 > 4.8e-3) v_rear = std::max(v_rear, P.velocity[3 * p]);
+    if (x0 > 1.0e-3 && x0 < 2.0e-3) v_middle = std::max(v_middle, P.velocity[3 * p]);
+  }
+  EXPECT_GT(failures, 10);
+  EXPECT_GT(v_rear - v_middle, 300.0);  // measured: ~930 m/s against ~15 m/s
+}
+
+}  // namespace
+}  // namespace hvi
