@@ -5,13 +5,8 @@
 
 namespace hvi::geometry {
 
-double PointSet::total_volume() const {
-  double v = 0.0;
-  for (const double x : volume) v += x;
-  return v;
-}
-
-PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor, const Bounds* clip) {
+PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor,
+                        const Bounds* clip) {
   const Bounds b = solid.bounds();
   long lo[3], hi[3];
   for (int d = 0; d < 3; ++d) {
@@ -37,9 +32,12 @@ PointSet sample_lattice(const Solid& solid, double spacing, const Point& anchor,
         if (inside_clip(x)) points.position.insert(points.position.end(), x.begin(), x.end());
       }
   const std::size_t n = points.position.size() / 3;
-  if (in_solid == 0) throw std::invalid_argument("the solid contains no lattice point: it is thinner than the point spacing");
+  if (in_solid == 0)
+    throw std::invalid_argument(
+        "the solid contains no lattice point: it is thinner than the point spacing");
   if (n == 0) throw std::invalid_argument("no point of the solid lies inside the clip box");
   points.volume.assign(n, solid.volume() / static_cast<double>(in_solid));
+  points.half_width.assign(3 * n, spacing / 2);
   return points;
 }
 

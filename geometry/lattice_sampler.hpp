@@ -3,6 +3,7 @@
 // spacing `spacing` anchored at `anchor` (the grid origin, so that each grid cell holds the same
 // n x n x n points), kept where the solid contains them. Each point carries an equal share of the
 // solid's exact volume, so the sampled mass equals density x exact volume to round-off.
+// (The scene driver uses sample() in sampler.hpp, which adds refinement zones and thin walls.)
 #include "geometry/point_set.hpp"
 #include "geometry/primitives.hpp"
 

@@ -1,24 +1,11 @@
 #pragma once
-// Analytic solids with an exact inside test and exact volume: the projectile shapes and simple
-// plates. (Honeycomb panels and CAD surfaces come as meshes, see the geometry issue.)
-#include <array>
-#include <memory>
+// Analytic solids with an exact inside test and exact volume: the projectile shapes (sphere,
+// cylinder, cube) and plates. Their surface() is for output and clipping: exact for the box, an
+// inscribed polyhedron for the curved ones, symmetric about the coordinate planes through the
+// centre so that a symmetry cut halves its volume exactly (see clipped_solid.hpp).
+#include "geometry/solid.hpp"
 
 namespace hvi::geometry {
-
-using Point = std::array<double, 3>;
-
-struct Bounds {
-  Point lower, upper;
-};
-
-class Solid {
- public:
-  virtual ~Solid() = default;
-  virtual bool contains(const Point& x) const = 0;
-  virtual double volume() const = 0;  // exact, m^3
-  virtual Bounds bounds() const = 0;
-};
 
 class Sphere : public Solid {
  public:
@@ -26,6 +13,8 @@ class Sphere : public Solid {
   bool contains(const Point& x) const override;
   double volume() const override;
   Bounds bounds() const override;
+  TriangleMesh surface() const override;
+  bool convex() const override { return true; }
 
  private:
   Point center_;
@@ -39,6 +28,9 @@ class Box : public Solid {
   bool contains(const Point& x) const override;
   double volume() const override;
   Bounds bounds() const override;
+  TriangleMesh surface() const override;
+  std::unique_ptr<Solid> exact_clip(const Bounds& box) const override;
+  bool convex() const override { return true; }
 
  private:
   Point lower_, upper_;
@@ -52,11 +44,16 @@ class Cylinder : public Solid {
   bool contains(const Point& x) const override;
   double volume() const override;
   Bounds bounds() const override;
+  TriangleMesh surface() const override;
+  bool convex() const override { return true; }
 
  private:
   Point base_;
   int axis_;
   double radius_, length_;
 };
+
+// The closed surface of an axis-aligned box (12 triangles, outward).
+TriangleMesh box_surface(const Point& lower, const Point& upper);
 
 }  // namespace hvi::geometry

@@ -8,8 +8,9 @@ HVI_BUILD="${HVI_BUILD:-$HVI_ROOT/build}"
 
 packages=(
   cmake make g++ git pkg-config
-  libtomlplusplus-dev libcli11-dev libfmt-dev libhdf5-dev libeigen3-dev
+  libtomlplusplus-dev libcli11-dev libfmt-dev libhdf5-dev libeigen3-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libboost-dev  # Boost.Math's students_t (header-only) for hvi fit's significance tests
   python3 python3-numpy python3-h5py python3-matplotlib
 )
 

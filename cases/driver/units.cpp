@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +39,9 @@ constexpr std::array kUnits{
     UnitDef{"J", 0, 1.0, dims::energy, true},   UnitDef{"W", 0, 1.0, kPower, true},
     UnitDef{"Hz", 0, 1.0, dims::rate, true},    UnitDef{"bar", 5, 1.0, dims::pressure, true},
     UnitDef{"min", 0, 60.0, dims::time, false}, UnitDef{"h", 0, 3600.0, dims::time, false},
+    // Angles are dimensionless; SI is the radian.
+    UnitDef{"deg", 0, std::numbers::pi / 180.0, dims::none, false},
+    UnitDef{"rad", 0, 1.0, dims::none, false},
 };
 
 struct Prefix {
@@ -54,8 +58,8 @@ constexpr std::array kPrefixes{
 };
 
 constexpr std::string_view kKnownUnits =
-    "known units: m, g, s, K, degC, N, Pa, J, W, Hz, bar, min, h, with prefixes p n u µ m c k M "
-    "G T, e.g. mm, km/s, g/cm^3, MPa, J/(kg K)";
+    "known units: m, g, s, K, degC, N, Pa, J, W, Hz, bar, min, h, deg, rad, with prefixes p n u µ "
+    "m c k M G T, e.g. mm, km/s, g/cm^3, MPa, J/(kg K), 30 deg";
 
 // Offset temperature unit: only meaningful as the whole unit of a value.
 constexpr double kCelsiusOffset = 273.15;

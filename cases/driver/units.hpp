@@ -48,7 +48,8 @@ struct UnitError : std::runtime_error {
 // Parses "<number> <unit expression>". The unit expression is a product of unit factors separated
 // by '*', '/', '.', or a space, each factor optionally raised to an integer power with '^'
 // ("m/s^2", "kg m^-3", "J/(kg K)"). Units: m, g, s, K, degC (offset, only alone), N, Pa, J, W, Hz,
-// bar, min, h, and SI prefixes (p n u µ m c k M G T) on m, g, s, N, Pa, J, W, Hz, bar.
+// bar, min, h, the dimensionless angle units deg and rad (SI: rad), and SI prefixes
+// (p n u µ m c k M G T) on m, g, s, N, Pa, J, W, Hz, bar.
 // A bare number without unit is dimensionless. Throws UnitError on malformed text or an unknown
 // unit.
 Quantity parse_quantity(std::string_view text);

@@ -77,6 +77,14 @@ TEST(Units, RatesTemperatureAndPlainNumbers) {
   expect_quantity("5e-4m", 5e-4, dims::length);
 }
 
+// Angles (the honeycomb pattern's rotation, a surface's placement) are dimensionless; SI: rad.
+TEST(Units, Angles) {
+  expect_quantity("30 deg", std::acos(-1.0) / 6, dims::none);
+  expect_quantity("-90 deg", -std::acos(-1.0) / 2, dims::none);
+  expect_quantity("0.5 rad", 0.5, dims::none);
+  EXPECT_NE(unit_error("30 mdeg"), "");  // no prefixes on angle units
+}
+
 TEST(Units, UnknownUnitListsKnownUnits) {
   const std::string message = unit_error("3 furlong");
   EXPECT_NE(message.find("unknown unit 'furlong'"), std::string::npos) << message;

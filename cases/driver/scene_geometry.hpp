@@ -1,0 +1,25 @@
+#pragma once
+// Internal to the scene layer (scene.cpp): the geometry tables of a scene. [[panel]] entries become
+// three bodies each; [[refinement]] zones name the bodies they refine; a [[body]] mesh file is
+// resolved against the scene file's folder. Problems are appended as located diagnostics.
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "cases/driver/scene.hpp"
+
+namespace hvi::scene::detail {
+
+// Rewrites each [[body]] mesh.file as an absolute path (relative paths are relative to the folder
+// of `scene_file`) so that the resolved scene, read back from a run directory, finds it too.
+void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
+                        std::vector<Diagnostic>& errors);
+MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid);
+// Appends <panel>.front, .core and .rear to s.bodies (after the [[body]] entries).
+void read_panels(const toml::array& panels, Scene& s, const Validated& v,
+                 std::vector<Diagnostic>& errors);
+void read_refinements(const toml::array& zones, Scene& s, const Validated& v,
+                      std::vector<Diagnostic>& errors);
+
+}  // namespace hvi::scene::detail
