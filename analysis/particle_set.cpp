@@ -1,0 +1,60 @@
+#include "analysis/particle_set.hpp"
+
+#include <algorithm>
+
+namespace hvi::analysis {
+
+namespace {
+
+template <class T>
+void append_field(std::vector<T>& out, std::span<const T> in, std::size_t p, int components) {
+  if (in.empty()) return;
+  for (int c = 0; c < components; ++c) out.push_back(in[components * p + c]);
+}
+
+}  // namespace
+
+ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride) {
+  ParticleData out;
+  const std::size_t copies = (planes.x ? 2 : 1) * (planes.y ? 2 : 1);
+  out.position.reserve(3 * set.size() * copies);
+  out.id.reserve(set.size() * copies);
+  std::int64_t image = 0;
+  for (int mx = 0; mx < (planes.x ? 2 : 1); ++mx)
+    for (int my = 0; my < (planes.y ? 2 : 1); ++my, ++image)
+      for (std::size_t p = 0; p < set.size(); ++p) {
+        Vec3 x = set.x(p);
+        if (mx) x[0] = 2 * *planes.x - x[0];
+        if (my) x[1] = 2 * *planes.y - x[1];
+        out.position.insert(out.position.end(), x.begin(), x.end());
+        out.id.push_back(set.id[p] + image * id_stride);
+        append_field(out.body, set.body, p, 1);
+        append_field(out.mass, set.mass, p, 1);
+        append_field(out.volume, set.volume, p, 1);
+        append_field(out.failed, set.failed, p, 1);
+        append_field(out.spacing, set.spacing, p, 1);
+        append_field(out.half_width, set.half_width, p, 3);
+      }
+  return out;
+}
+
+ParticleData copy_of(const ParticleSet& set) {
+  return mirrored(set, {}, 0);
+}
+
+double point_spacing(const ParticleSet& set, std::size_t p, double fallback) {
+  if (!set.spacing.empty()) return set.spacing[p];
+  if (!set.half_width.empty())
+    return 2 *
+           std::max({set.half_width[3 * p], set.half_width[3 * p + 1], set.half_width[3 * p + 2]});
+  return fallback;
+}
+
+std::vector<std::size_t> particles_of(const ParticleSet& set, std::int64_t body, bool intact_only) {
+  std::vector<std::size_t> out;
+  for (std::size_t p = 0; p < set.size(); ++p)
+    if (set.body[p] == body && (!intact_only || set.intact(p))) out.push_back(p);
+  return out;
+}
+
+}  // namespace hvi::analysis

@@ -1,0 +1,28 @@
+#pragma once
+// Reading a run's particle snapshots (mpm/io/snapshot_writer.hpp:
+// DIR/snapshots/particles_NNNNNN.h5, one dataset per field, particles in id order; attributes time
+// and step) into plain arrays.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "analysis/particle_set.hpp"
+
+namespace hvi::analysis {
+
+struct Snapshot {
+  std::filesystem::path file;
+  double time = 0;  // s
+  std::int64_t step = 0;
+  ParticleData particles;        // position, id, body, mass, volume, failed (if written)
+  std::vector<double> velocity;  // 3 per particle, m/s
+  std::vector<double> volume0;   // initial volume, m^3 (volume / volume_ratio)
+};
+
+// The snapshot files of a run directory, in order (index = NNNNNN).
+std::vector<std::filesystem::path> snapshot_files(const std::filesystem::path& run_directory);
+
+// Throws std::runtime_error (or mpm::io::Hdf5Error) for a missing or malformed file.
+Snapshot read_snapshot(const std::filesystem::path& file);
+
+}  // namespace hvi::analysis

@@ -1,0 +1,261 @@
+#include "cases/driver/measure_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "analysis/snapshot.hpp"
+#include "cases/driver/run_info.hpp"
+
+namespace hvi::driver {
+
+namespace fs = std::filesystem;
+using analysis::ParticleData;
+using analysis::ParticleSet;
+
+namespace {
+
+// The impact direction: every panel is struck along -z ([[panel]], paper Fig. 1), and the top
+// view looks along z.
+constexpr analysis::Vec3 impact_direction{0, 0, -1};
+
+std::string body_list(const RunInfo& info) {
+  std::string s;
+  for (const auto& b : info.bodies) s += (s.empty() ? "'" : ", '") + b.name + "'";
+  return s;
+}
+
+int facesheet_body(const RunInfo& info, const std::string& name, const char* option) {
+  const int b = info.body(name);
+  if (b < 0)
+    throw std::invalid_argument(
+        fmt::format("{}: no body named '{}'; bodies: {}", option, name, body_list(info)));
+  return b;
+}
+
+// Per-particle point spacing from the scene (RunInfo::spacing).
+void attach_spacing(ParticleData& p, const std::vector<double>& volume0, const RunInfo& info,
+                    const fs::path& file) {
+  p.spacing.resize(p.size());
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.body[k] < 0 || p.body[k] >= static_cast<std::int64_t>(info.bodies.size()))
+      throw std::invalid_argument(fmt::format("{}: body index {} but the scene has {} bodies",
+                                              file.string(), p.body[k], info.bodies.size()));
+    p.spacing[k] = info.spacing(static_cast<int>(p.body[k]), volume0[k]);
+  }
+}
+
+std::size_t snapshot_index(const std::string& which, std::size_t count, const fs::path& run) {
+  if (which == "last") return count - 1;
+  std::size_t pos = 0;
+  long n = -1;
+  try {
+    n = std::stol(which, &pos);
+  } catch (const std::exception&) {
+  }
+  if (pos != which.size() || n < 0)
+    throw std::invalid_argument(
+        fmt::format("--snapshot: expected an index or 'last', got '{}'", which));
+  if (static_cast<std::size_t>(n) >= count)
+    throw std::invalid_argument(
+        fmt::format("--snapshot {}: {} has snapshots 0 to {}", n, run.string(), count - 1));
+  return static_cast<std::size_t>(n);
+}
+
+// The moving body at t = 0 with the largest speed of its mean velocity: the projectile.
+struct Projectile {
+  int body = -1;
+  double speed = 0;
+};
+Projectile find_projectile(const analysis::Snapshot& s) {
+  std::map<std::int64_t, std::array<double, 4>> momentum;  // body -> (m v, m)
+  const auto& p = s.particles;
+  if (s.velocity.size() != 3 * p.size()) return {};
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    auto& m = momentum[p.body[k]];
+    for (int d = 0; d < 3; ++d) m[d] += p.mass[k] * s.velocity[3 * k + d];
+    m[3] += p.mass[k];
+  }
+  Projectile best;
+  for (const auto& [body, m] : momentum) {
+    const double speed = std::hypot(m[0], m[1], m[2]) / m[3];
+    if (speed > best.speed) best = {static_cast<int>(body), speed};
+  }
+  return best;
+}
+
+}  // namespace
+
+Measurements measure_run(const MeasureOptions& o) {
+  Measurements out;
+  out.run = o.run;
+  const fs::path scene_file = o.run / "scene.resolved.toml";
+  if (!fs::exists(scene_file))
+    throw std::invalid_argument(
+        fmt::format("{}: not a run directory (no scene.resolved.toml)", o.run.string()));
+  const RunInfo info = read_run_info(scene_file);
+  const auto files = analysis::snapshot_files(o.run);
+  if (files.empty()) throw std::invalid_argument(fmt::format("{}: no snapshots", o.run.string()));
+  const std::size_t index = snapshot_index(o.snapshot, files.size(), o.run);
+
+  // The facesheets.
+  std::string front = o.front, rear = o.rear;
+  if (front.empty() && rear.empty()) {
+    if (info.panels.size() != 1)
+      throw std::invalid_argument(
+          fmt::format("{}: name the facesheets with --front BODY and/or --rear BODY (the scene has "
+                      "{} [[panel]]s; bodies: {})",
+                      o.run.string(), info.panels.size(), body_list(info)));
+    front = info.panels[0].name + ".front";
+    rear = info.panels[0].name + ".rear";
+  }
+  const int front_body = front.empty() ? -1 : facesheet_body(info, front, "--front");
+  const int rear_body = rear.empty() ? -1 : facesheet_body(info, rear, "--rear");
+
+  // Snapshots: the first for initial positions, the chosen one; both mirrored alike.
+  analysis::Snapshot first = analysis::read_snapshot(files.front());
+  analysis::Snapshot now = index == 0 ? first : analysis::read_snapshot(files[index]);
+  out.snapshot_file = now.file;
+  out.time = now.time;
+  out.step = now.step;
+  attach_spacing(first.particles, first.volume0, info, first.file);
+  attach_spacing(now.particles, now.volume0, info, now.file);
+  if (now.particles.failed.empty())
+    out.notes.push_back(
+        "no 'failed' field in the snapshot (no failure model): every particle counts as intact");
+  std::int64_t stride = 1;
+  for (const auto* p : {&first.particles, &now.particles})
+    for (const std::int64_t id : p->id) stride = std::max(stride, id + 1);
+  out.mirror = o.mirror ? info.mirror : analysis::MirrorPlanes{};
+  const ParticleData initial = analysis::mirrored(first.particles.view(), out.mirror, stride);
+  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, stride);
+
+  // The projectile and the impact axis.
+  const Projectile projectile = find_projectile(first);
+  if (o.axis) {
+    out.axis = *o.axis;
+  } else {
+    if (projectile.body < 0)
+      throw std::invalid_argument(
+          "no body moves at t = 0 to take the impact axis from: give --axis x0,y0");
+    double m = 0, x = 0, y = 0;
+    for (std::size_t k = 0; k < initial.size(); ++k)
+      if (initial.body[k] == projectile.body) {
+        m += initial.mass[k];
+        x += initial.mass[k] * initial.position[3 * k];
+        y += initial.mass[k] * initial.position[3 * k + 1];
+      }
+    // To a picometre: the centroid of a mirrored set is on the plane only to round-off (1e-21 m).
+    // (+ 0.0 turns -0 into 0.)
+    out.axis = {std::round(x / m * 1e12) / 1e12 + 0.0, std::round(y / m * 1e12) / 1e12 + 0.0};
+  }
+
+  // The facesheets in top view.
+  auto measure_sheet = [&](int body, analysis::DiameterRule rule) {
+    analysis::FacesheetOptions f;
+    f.axis = out.axis;
+    f.rule = rule;
+    f.rotation = o.rotation;
+    f.view.resolution = o.resolution;
+    f.view.gap_closing = o.gap_closing;
+    f.link_factor = o.link_factor;
+    analysis::FacesheetResult r = analysis::measure_facesheet(current.view(), body, f);
+    SheetMeasurement s{info.bodies[body].name,  r.hole,   r.raster.spacing,
+                       r.raster.closing_radius, r.intact, r.detached};
+    return std::pair{s, std::move(r)};
+  };
+  std::vector<std::size_t> front_attached, rear_attached;
+  if (front_body >= 0) {
+    auto [s, view] = measure_sheet(front_body, o.front_rule);
+    out.front = s;
+    front_attached = view.attached;
+    if (o.images) out.front_view = std::move(view);
+  }
+  if (rear_body >= 0) {
+    auto [s, view] = measure_sheet(rear_body, o.rear_rule);
+    out.rear = s;
+    rear_attached = view.attached;
+    if (!s.hole.perforated && !view.attached.empty())
+      out.bulge =
+          analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
+    if (o.images) out.rear_view = std::move(view);
+  }
+
+  // Taper, eq. (12).
+  out.core_height = o.core_height;
+  if (!out.core_height && info.panels.size() == 1) out.core_height = info.panels[0].core_height;
+  if (out.front && out.rear && out.front->hole.perforated && out.rear->hole.perforated &&
+      out.core_height)
+    out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
+
+  // Debris behind the last sheet's back face (particle centres sit half a spacing inside it).
+  const int behind = rear_body >= 0 ? rear_body : front_body;
+  if (behind >= 0) {
+    double z_back = INFINITY;
+    for (std::size_t k = 0; k < initial.size(); ++k)
+      if (initial.body[k] == behind)
+        z_back = std::min(z_back, initial.position[3 * k + 2] - initial.spacing[k] / 2);
+    if (!std::isfinite(z_back))
+      throw std::invalid_argument(
+          fmt::format("body '{}' has no particles", info.bodies[behind].name));
+    analysis::DebrisOptions d;
+    d.axis_point = {out.axis[0], out.axis[1], 0};
+    d.direction = impact_direction;
+    d.back_face = -z_back;  // (x - a) . d with d = -z
+    d.threshold = info.bodies[behind].spacing;
+    // Not debris: the sheet's own attached material (a bulge, petals), and material that was
+    // behind the face from the start (the rest of a panel when only --front is named).
+    std::vector<std::size_t> excluded = rear_body >= 0 ? rear_attached : front_attached;
+    std::unordered_map<std::int64_t, double> initial_z;
+    for (std::size_t k = 0; k < initial.size(); ++k)
+      initial_z.emplace(initial.id[k], initial.position[3 * k + 2]);
+    for (std::size_t k = 0; k < current.size(); ++k)
+      if (initial_z.at(current.id[k]) < z_back - d.threshold) excluded.push_back(k);
+    out.debris = analysis::debris_cloud(current.view(), d, excluded);
+    out.debris_behind = info.bodies[behind].name;
+    out.debris_back_face = z_back;
+    out.debris_threshold = d.threshold;
+  }
+
+  // The dimensional-analysis variables (paper Section 6).
+  auto add = [&](const char* name, std::optional<double> v) {
+    if (v) out.variables.emplace_back(name, *v);
+  };
+  auto speed_of = [&](int body) -> std::optional<double> {
+    if (body < 0) return std::nullopt;
+    const auto it = info.sound_speed.find(info.bodies[body].material);
+    return it == info.sound_speed.end() ? std::nullopt : std::optional<double>(it->second);
+  };
+  if (projectile.body >= 0) {
+    add("v_p", projectile.speed);
+    std::optional<double> d = info.bodies[projectile.body].sphere_radius;
+    if (d) {
+      *d *= 2;
+    } else {  // the diameter of the sphere of the same volume
+      double v = 0;
+      for (std::size_t k = 0; k < initial.size(); ++k)
+        if (initial.body[k] == projectile.body)
+          v += initial.volume[k];  // at t = 0, the initial volume
+      d = std::cbrt(6 * v / std::numbers::pi);
+    }
+    add("d_p", d);
+  }
+  add("t_f", front_body >= 0 ? info.bodies[front_body].thickness : std::nullopt);
+  add("t_r", rear_body >= 0 ? info.bodies[rear_body].thickness : std::nullopt);
+  add("c_f", speed_of(front_body));
+  add("c_r", speed_of(rear_body));
+  if (info.panels.size() == 1) {
+    add("c_hc", speed_of(info.body(info.panels[0].name + ".core")));
+    add("t_hc", info.panels[0].wall_thickness);
+    add("D_hc", info.panels[0].cell_diameter);
+  }
+  add("S", out.core_height);
+  return out;
+}
+
+}  // namespace hvi::driver

@@ -1,0 +1,75 @@
+#pragma once
+// hvi measure RUN_DIR: the paper's hole measurements (Section 4.2, eqs. 8-12), the rear bulge and
+// the debris cloud of a finished run, from its resolved scene and snapshots. Writes
+// RUN_DIR/measurements.json and RUN_DIR/measurements.csv (one header line and one row; SI units;
+// the columns hvi fit reads).
+//   hvi measure runs/study_1g                      # last snapshot, panel facesheets
+//   hvi measure runs/plate --front plate --snapshot 5 --axis "1 mm,0 mm"
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/bulge.hpp"
+#include "analysis/debris.hpp"
+#include "analysis/facesheet.hpp"
+
+namespace hvi::driver {
+
+struct MeasureOptions {
+  std::filesystem::path run;
+  std::string snapshot = "last";  // an index N or "last"
+  std::optional<std::array<double, 2>>
+      axis;                 // impact point (x0, y0), m; default: the projectile's centroid
+  double resolution = 0;    // raster pixel, m; 0: a quarter of the finest spacing
+  std::string front, rear;  // facesheet bodies; default <panel>.front / .rear
+  std::optional<double> core_height;  // S, m; default: the panel's
+  analysis::DiameterRule front_rule = analysis::DiameterRule::two_chords;     // eq. (8)
+  analysis::DiameterRule rear_rule = analysis::DiameterRule::six_directions;  // eqs. (9)-(10)
+  double rotation = 0;         // of the measurement directions, rad
+  bool mirror = true;          // mirror a half/quarter model across its symmetry planes
+  double gap_closing = 0.375;  // see analysis/top_view.hpp
+  double link_factor = 1.75;   // see analysis/clusters.hpp
+  bool images = false;         // write the top views as PGM images
+};
+
+struct SheetMeasurement {
+  std::string body;
+  analysis::HoleGeometry hole;
+  double spacing = 0;         // finest point spacing of the sheet, m
+  double closing_radius = 0;  // m
+  std::size_t intact = 0, detached = 0;
+};
+
+struct Measurements {
+  std::filesystem::path run;
+  std::filesystem::path snapshot_file;
+  double time = 0;
+  std::int64_t step = 0;
+  std::array<double, 2> axis{};
+  analysis::MirrorPlanes mirror;
+  std::optional<SheetMeasurement> front, rear;
+  std::optional<double> taper, core_height;  // eq. (12); S
+  std::optional<analysis::Bulge> bulge;      // rear facesheet not perforated
+  analysis::Debris debris;
+  std::string debris_behind;  // the sheet whose back face it is measured from
+  double debris_back_face = 0, debris_threshold = 0;  // z of the back face, m; threshold, m
+  // The variables of the dimensional analysis (paper Section 6), where the scene defines them.
+  std::vector<std::pair<std::string, double>>
+      variables;  // v_p, d_p, t_f, t_r, c_f, c_r, c_hc, t_hc, D_hc, S
+  std::vector<std::string> notes;
+  // For images.
+  std::optional<analysis::FacesheetResult> front_view, rear_view;
+};
+
+// Throws std::invalid_argument for bad input (no such run, body or snapshot).
+Measurements measure_run(const MeasureOptions& options);
+
+// Prints the measurements (mm), writes measurements.json and .csv (SI); returns the exit code.
+int measure_command(const MeasureOptions& options);
+
+// The files, for tests and scripts.
+void write_measurements(const Measurements& m, const std::filesystem::path& dir);
+
+}  // namespace hvi::driver

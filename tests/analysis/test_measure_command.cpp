@@ -1,0 +1,255 @@
+// hvi measure end to end on a synthetic run directory: a resolved scene with a [[panel]] and a
+// symmetry plane (a half model), and two snapshots written in the solver's format, with a front
+// hole, a rear bulge or hole, and debris of known size. Checks the reading of the scene (bodies,
+// spacings, panel, sound speeds, mirror plane), the projectile axis, the mirroring and the files.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "analysis/table.hpp"
+#include "cases/driver/measure_command.hpp"
+#include "mpm/io/hdf5_file.hpp"
+#include "synthetic.hpp"
+
+namespace hvi::driver {
+namespace {
+
+namespace fs = std::filesystem;
+using analysis::ParticleData;
+
+constexpr double mm = 1e-3;
+constexpr double h = 0.1 * mm;  // cell 0.2 mm, 2 points per cell
+
+const char* scene = R"(
+title = 'synthetic'
+refinement = []
+[grid]
+cell_size = 0.0002
+lower = [-0.005, 0.0, -0.008]
+upper = [0.005, 0.005, 0.002]
+[[boundary]]
+face = 'y-'
+position = 0.0
+type = 'symmetry'
+[[material]]
+name = 'Al'
+density = 2700.0
+eos = 'mie-gruneisen'
+youngs_modulus = 7.0e10
+poisson_ratio = 0.33
+  [material.mie_gruneisen]
+  c0 = 5350.0
+[[body]]
+name = 'projectile'
+material = 'Al'
+particles_per_cell = 2
+velocity = [0.0, 0.0, -3000.0]
+  [body.sphere]
+  center = [0.0, 0.0, 0.001]
+  radius = 0.0005
+[[panel]]
+name = 'panel'
+front_material = 'Al'
+core_material = 'Al'
+rear_material = 'Al'
+front_thickness = 0.0004
+rear_thickness = 0.0002
+wall_thickness = 5.0e-5
+cell_diameter = 0.003
+core_height = 0.005
+particles_per_cell = 2
+)";
+
+// Bodies: 0 projectile, 1 panel.front, 2 panel.core, 3 panel.rear (the [[body]]s, then the panel).
+struct Frame {
+  ParticleData p;
+  std::vector<double> velocity;
+};
+
+void append(Frame& f, const ParticleData& part, std::int64_t body, double speed = 0) {
+  for (std::size_t k = 0; k < part.size(); ++k) {
+    f.p.position.insert(f.p.position.end(), part.position.begin() + 3 * k,
+                        part.position.begin() + 3 * k + 3);
+    f.p.id.push_back(static_cast<std::int64_t>(f.p.id.size()));
+    f.p.body.push_back(body);
+    f.p.mass.push_back(part.mass[k]);
+    f.p.volume.push_back(part.volume[k]);
+    f.p.failed.push_back(part.failed[k]);
+    f.velocity.insert(f.velocity.end(), {0.0, 0.0, -speed});
+  }
+}
+
+// The half model (y > 0) of: a projectile (a block of 10 x 5 x 4 points of 0.1 mm at z ~ 1 mm),
+// a front facesheet z in [-0.4, 0] mm, a few core points, a rear facesheet z in [-5.6, -5.4] mm.
+Frame initial_frame() {
+  Frame f;
+  auto half = [](const ParticleData& full) {
+    return analysis::test::cut(full.view(), false, true);
+  };
+  ParticleData projectile = half(analysis::test::plate(0.5 * mm, h, 4, {}, false, 0, 1.2 * mm));
+  append(f, projectile, 0, 3000);
+  append(f, half(analysis::test::plate(4 * mm, h, 4, {}, false, 1, 0.0)), 1);
+  append(f, half(analysis::test::plate(0.2 * mm, h, 1, {}, false, 2, -2.0 * mm)), 2);
+  append(f, half(analysis::test::plate(4 * mm, h, 2, {}, false, 3, -5.4 * mm)), 3);
+  return f;
+}
+
+void write(const fs::path& file, const Frame& f, double time, std::int64_t step) {
+  fs::create_directories(file.parent_path());
+  mpm::io::Hdf5File h5(file.string(), mpm::io::Hdf5File::Mode::create);
+  h5.write_attribute("time", time);
+  h5.write_attribute("step", step);
+  const std::size_t n = f.p.size();
+  h5.write("position", f.p.position.data(), n, 3);
+  h5.write("velocity", f.velocity.data(), n, 3);
+  h5.write("mass", f.p.mass.data(), n, 1);
+  h5.write("volume", f.p.volume.data(), n, 1);
+  const std::vector<double> ratio(n, 1.0);
+  h5.write("volume_ratio", ratio.data(), n, 1);
+  h5.write("failed", f.p.failed.data(), n, 1);
+  h5.write("id", f.p.id.data(), n, 1);
+  h5.write("body", f.p.body.data(), n, 1);
+}
+
+// A run: the front has a hole of radius 1 mm (failed), the rear is pushed by a Gaussian bump of
+// 0.25 mm (width 1 mm) or, with `rear_hole`, has an elliptic hole 1.6 x 1.2 mm; the projectile sits
+// 2 mm behind the rear face as debris, spread 0.5 mm off the axis.
+fs::path make_run(const std::string& name, bool rear_hole) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("hvi_measure_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "scene.resolved.toml") << scene;
+  Frame f = initial_frame();
+  write(dir / "snapshots" / "particles_000000.h5", f, 0.0, 0);
+  for (std::size_t k = 0; k < f.p.size(); ++k) {
+    double* x = &f.p.position[3 * k];
+    const double r2 = x[0] * x[0] + x[1] * x[1];
+    if (f.p.body[k] == 0) x[2] -= 8.8 * mm;  // the block from z in [0.8, 1.2] mm to [-8, -7.6] mm
+    if (f.p.body[k] == 1 && r2 < 1 * mm * mm) f.p.failed[k] = 1;
+    if (f.p.body[k] == 3) {
+      if (rear_hole && x[0] * x[0] / (1.6 * 1.6) + x[1] * x[1] / (1.2 * 1.2) < mm * mm)
+        f.p.failed[k] = 1;
+      if (!rear_hole) x[2] -= 0.25 * mm * std::exp(-r2 / (mm * mm));
+    }
+  }
+  write(dir / "snapshots" / "particles_000001.h5", f, 10e-6, 1000);
+  return dir;
+}
+
+TEST(MeasureCommand, PanelHalfModelNotPerforatedRear) {
+  const fs::path dir = make_run("np", false);
+  MeasureOptions o;
+  o.run = dir;
+  const Measurements m = measure_run(o);
+  EXPECT_EQ(m.time, 10e-6);
+  ASSERT_TRUE(m.mirror.y.has_value());
+  EXPECT_EQ(*m.mirror.y, 0.0);
+  EXPECT_FALSE(m.mirror.x.has_value());
+  // The projectile's half block mirrored: its centroid is on the axis.
+  EXPECT_EQ(m.axis[0], 0.0);
+  EXPECT_EQ(m.axis[1], 0.0);
+  ASSERT_TRUE(m.front && m.rear);
+  EXPECT_EQ(m.front->body, "panel.front");
+  EXPECT_DOUBLE_EQ(m.front->spacing, h);
+  EXPECT_DOUBLE_EQ(m.front->hole.resolution, h / 4);
+  EXPECT_TRUE(m.front->hole.perforated);
+  EXPECT_EQ(m.front->hole.rule, analysis::DiameterRule::two_chords);
+  // Circle of radius 1 mm on a lattice of h: within h/sqrt(2) + a cell + the closing's rounding
+  // per radius (test_hole.cpp), twice that for a diameter.
+  const double tolerance = 2 * (h / std::sqrt(2.0) + h / 4 + (std::sqrt(2.0) - 1) * 0.375 * h);
+  EXPECT_NEAR(m.front->hole.D, 2 * mm, tolerance);
+  EXPECT_FALSE(m.rear->hole.perforated);
+  EXPECT_FALSE(m.taper.has_value());
+  // Bulge: the nearest lattice column to the axis is h/sqrt(2) away.
+  ASSERT_TRUE(m.bulge.has_value());
+  EXPECT_NEAR(m.bulge->displacement, 0.25 * mm * std::exp(-0.5 * h * h / (mm * mm)), 1e-15);
+  // Debris: the whole projectile (mirrored: both halves); its deepest particle centre at
+  // z = -8 mm + h/2, 2.35 mm behind the back face at -5.6 mm; its farthest column from the axis at
+  // (0.45, 0.45) mm.
+  double mass = 0;
+  const Frame f = initial_frame();
+  for (std::size_t k = 0; k < f.p.size(); ++k)
+    if (f.p.body[k] == 0) mass += 2 * f.p.mass[k];
+  EXPECT_NEAR(m.debris.mass, mass, 1e-12 * mass);
+  EXPECT_EQ(m.debris_behind, "panel.rear");
+  EXPECT_NEAR(m.debris_back_face, -5.6 * mm, 1e-12);
+  EXPECT_NEAR(m.debris.axial_extent, 7.95 * mm - 5.6 * mm, 1e-12);
+  EXPECT_NEAR(m.debris.radial_extent, std::hypot(0.45, 0.45) * mm, 1e-12);
+  // The dimensional-analysis variables from the scene.
+  std::map<std::string, double> v(m.variables.begin(), m.variables.end());
+  EXPECT_NEAR(v.at("v_p"), 3000, 1e-9);  // a mass-weighted mean: round-off
+  EXPECT_DOUBLE_EQ(v.at("d_p"), 1 * mm);
+  EXPECT_DOUBLE_EQ(v.at("t_f"), 0.4 * mm);
+  EXPECT_DOUBLE_EQ(v.at("t_r"), 0.2 * mm);
+  EXPECT_DOUBLE_EQ(v.at("c_f"), 5350);
+  EXPECT_DOUBLE_EQ(v.at("c_hc"), 5350);
+  EXPECT_DOUBLE_EQ(v.at("t_hc"), 0.05 * mm);
+  EXPECT_DOUBLE_EQ(v.at("D_hc"), 3 * mm);
+  EXPECT_DOUBLE_EQ(v.at("S"), 5 * mm);
+
+  // The files: JSON, and a CSV whose one row hvi fit reads.
+  write_measurements(m, dir);
+  EXPECT_TRUE(fs::exists(dir / "measurements.json"));
+  const analysis::Table t = analysis::read_csv(dir / "measurements.csv");
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(t.rows[0][t.column("front_perforated")], "true");
+  EXPECT_EQ(t.rows[0][t.column("rear_perforated")], "false");
+  EXPECT_NEAR(t.number(0, t.column("D_f")), m.front->hole.D, 1e-12);
+  EXPECT_TRUE(std::isnan(t.number(0, t.column("D_r"))));
+  EXPECT_NEAR(t.number(0, t.column("bulge")), m.bulge->displacement, 1e-12);
+}
+
+// The rear hole, an ellipse of semi-axes 1.6 and 1.2 mm: perforated, measured by the six-
+// direction rule, with the taper of eq. (12) from the panel's core height.
+TEST(MeasureCommand, PanelPerforatedRearAndTaper) {
+  const fs::path dir = make_run("perforated", true);
+  MeasureOptions o;
+  o.run = dir;
+  const Measurements m = measure_run(o);
+  ASSERT_TRUE(m.rear && m.rear->hole.perforated);
+  EXPECT_EQ(m.rear->hole.rule, analysis::DiameterRule::six_directions);
+  EXPECT_FALSE(m.bulge.has_value());
+  // Six-direction averages of r(theta) = AB / sqrt((B cos)^2 + (A sin)^2); off the axes the ray
+  // meets the ellipse at alpha >= asin(B/A): per radius h/(sqrt(2) B/A) + a cell + rounding.
+  const double A = 1.6 * mm, B = 1.2 * mm, deg = std::numbers::pi / 180;
+  double D_h = 0, D_v = 0;
+  for (int k = 0; k < 6; ++k) {
+    D_h += 2 * A * B / std::hypot(B * std::cos(60 * k * deg), A * std::sin(60 * k * deg)) / 6;
+    D_v += 2 * A * B /
+           std::hypot(B * std::cos((90 + 60 * k) * deg), A * std::sin((90 + 60 * k) * deg)) / 6;
+  }
+  const double tolerance =
+      2 * (h / (std::sqrt(2.0) * B / A) + h / 4 + (std::sqrt(2.0) - 1) * 0.375 * h);
+  EXPECT_NEAR(m.rear->hole.D_h, D_h, tolerance);
+  EXPECT_NEAR(m.rear->hole.D_v, D_v, tolerance);
+  ASSERT_TRUE(m.taper.has_value());
+  EXPECT_DOUBLE_EQ(*m.taper, (m.rear->hole.D - m.front->hole.D) / (5 * mm));
+  // The debris excludes the rear sheet's own material; the projectile is all of it.
+  EXPECT_NEAR(m.debris.axial_extent, 7.95 * mm - 5.6 * mm, 1e-12);
+
+  // Without mirroring the half sheet's hole reaches the cut at y = 0: open, and the axis is the
+  // half projectile's centroid (off the plane) unless given.
+  o.mirror = false;
+  o.axis = std::array<double, 2>{0.0, 0.0};
+  const Measurements half = measure_run(o);
+  EXPECT_TRUE(half.rear->hole.open);
+}
+
+TEST(MeasureCommand, BadInputIsReported) {
+  const fs::path dir = make_run("bad", false);
+  MeasureOptions o;
+  o.run = dir;
+  o.front = "nope";
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+  o.front = "";
+  o.snapshot = "2";
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+  o.run = dir / "missing";
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hvi::driver
