@@ -44,13 +44,17 @@ struct NodeStencil {
   // f(node, weight, gradient[3]) for every node of the stencil; gradient in 1/m.
   template <class Node, class F>
   void for_each(Node* const* blocks, double inv_h, F&& f) const {
-    for (int kz = first[2]; kz <= last[2]; ++kz)
-      for (int ky = first[1]; ky <= last[1]; ++ky) {
+    // Linear stencils always use both nodes: constant bounds let the compiler unroll them.
+    const int z0 = W > 2 ? first[2] : 0, z1 = W > 2 ? last[2] : W - 1;
+    const int y0 = W > 2 ? first[1] : 0, y1 = W > 2 ? last[1] : W - 1;
+    const int x0 = W > 2 ? first[0] : 0, x1 = W > 2 ? last[0] : W - 1;
+    for (int kz = z0; kz <= z1; ++kz)
+      for (int ky = y0; ky <= y1; ++ky) {
         const double nyz = N[1][ky] * N[2][kz];
         const double dy = dN[1][ky] * N[2][kz] * inv_h, dz = N[1][ky] * dN[2][kz] * inv_h;
         const int bit_yz = block_bit[1][ky] | block_bit[2][kz];
         const int off_yz = node_offset[1][ky] + node_offset[2][kz];
-        for (int kx = first[0]; kx <= last[0]; ++kx) {
+        for (int kx = x0; kx <= x1; ++kx) {
           Node* node = blocks[block_bit[0][kx] | bit_yz] + (node_offset[0][kx] + off_yz);
           const double grad[3] = {dN[0][kx] * nyz * inv_h, N[0][kx] * dy, N[0][kx] * dz};
           f(*node, N[0][kx] * nyz, grad);

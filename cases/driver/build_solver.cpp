@@ -2,8 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "geometry/lattice_sampler.hpp"
-#include "geometry/primitives.hpp"
+#include "cases/driver/bodies.hpp"
 #include "mpm/elastic.hpp"
 #include "mpm/materials/hydro_material.hpp"
 
@@ -18,20 +17,6 @@ std::unique_ptr<mpm::Material> make_material(const scene::MaterialSettings& m) {
     return std::make_unique<mpm::LinearElastic>(m.name, m.models.density, m.models.youngs_modulus,
                                                 m.models.poisson_ratio);
   return std::make_unique<mpm::HydroMaterial>(m.name, m.models);
-}
-
-std::unique_ptr<geometry::Solid> make_solid(const scene::BodySettings& b) {
-  return std::visit(
-      [](const auto& s) -> std::unique_ptr<geometry::Solid> {
-        using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, scene::SphereShape>)
-          return std::make_unique<geometry::Sphere>(s.center, s.radius);
-        else if constexpr (std::is_same_v<T, scene::BoxShape>)
-          return std::make_unique<geometry::Box>(s.lower, s.upper);
-        else
-          return std::make_unique<geometry::Cylinder>(s.base_center, s.axis, s.radius, s.length);
-      },
-      b.shape);
 }
 
 }  // namespace
@@ -73,18 +58,15 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
     const double density = solver.materials()[body.material]->reference_density();
-    const auto solid = make_solid(body);
-    geometry::PointSet points;
-    try {
-      geometry::Bounds clip;
-      if (body.clip) clip = {body.clip->lower, body.clip->upper};
-      points = geometry::sample_lattice(*solid, scene.grid.cell_size / body.particles_per_cell, scene.grid.lower,
-                                        body.clip ? &clip : nullptr);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(fmt::format("body '{}': {}", body.name, e.what()));
-    }
+    const geometry::PointSet points = sample_body(scene, b, *make_body_solid(scene, b));
     const std::size_t first = P.size(), n = points.size();
     P.resize(first + n);
+    // GIMP particle domains: half the sampling spacing per axis (a thin-wall point is wide along
+    // its wall and short across it, which V^(1/3) / 2 would not say).
+    if (mpm::is_gimp(solver.settings().shape) && points.half_width.size() == 3 * n) {
+      auto& hw = P.add_field(mpm::Solver::half_width_field, mpm::FieldKind::vector, "m", 0.0, false);
+      std::copy(points.half_width.begin(), points.half_width.end(), hw.begin() + 3 * static_cast<std::ptrdiff_t>(first));
+    }
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t p = first + k;
       for (int d = 0; d < 3; ++d) {

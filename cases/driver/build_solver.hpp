@@ -11,9 +11,10 @@ namespace hvi::driver {
 // The solver with its grid, conditions and materials, but no particles yet.
 std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
 
-// Samples every body into material points (lattice aligned with the grid, particles_per_cell
-// points per cell and axis, each carrying an equal share of the body's exact volume) and sets
-// their velocity. Returns the number of points per body.
+// Samples every body into material points (bodies.hpp: a lattice aligned with the grid,
+// particles_per_cell points per cell and axis, finer in refinement zones, thin walls as single
+// layers; volumes summing to the body's exact volume) and sets their velocity. Returns the number
+// of points per body. Throws scene::SceneError for a refused surface file.
 std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver);
 
 }  // namespace hvi::driver

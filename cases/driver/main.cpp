@@ -3,15 +3,24 @@
 //   hvi check SCENE [--set key=value]...          validate a scene and show what it will simulate
 //   hvi run SCENE --out DIR [--threads N] [--set key=value]... [--overwrite]
 //   hvi run --resume DIR [--threads N] [--set key=value]...
+//   hvi geometry SCENE --out DIR [--threads N] [--set key=value]...
+//                                                  build and sample the bodies; write STL and points
 //   hvi keys                                       every scene key (Markdown)
+//   hvi measure RUN_DIR [--snapshot N|last] [--axis x0,y0] [--resolution R]...
+//                                                  hole sizes, bulge, debris (measurements.json)
+//   hvi fit CSV_OR_DIR --form front|rear|taper     the dimensional-analysis power laws
 #include <omp.h>
 
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "cases/driver/analysis_cli.hpp"
 #include "cases/driver/build_solver.hpp"
+#include "cases/driver/convergence_command.hpp"
+#include "cases/driver/geometry_command.hpp"
 #include "cases/driver/run.hpp"
 #include "cases/driver/scene.hpp"
 #include "cases/driver/scene_schema.hpp"
@@ -81,7 +90,29 @@ int main(int argc, char** argv) {
   scene_opt->excludes(resume_opt);
   out_opt->excludes(resume_opt);
 
+  auto* geometry_cmd = app.add_subcommand(
+      "geometry", "Build and sample the bodies; write each as STL and the points as HDF5/XDMF (ParaView)");
+  geometry_cmd->add_option("scene", scene_path, "Scene file (TOML)")->required();
+  geometry_cmd->add_option("--out", out_dir, "Output directory")->required();
+  geometry_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  geometry_cmd->add_option("--set", overrides, "Override a scene key: key.path=value (repeatable)");
+
   auto* keys_cmd = app.add_subcommand("keys", "Print every scene key with its type, unit, range and default (Markdown)");
+
+  hvi::driver::ConvergenceOptions convergence;
+  auto* convergence_cmd = app.add_subcommand(
+      "convergence", "Run a scene at a ladder of resolutions: each [[measure]] with its error, wall time and memory");
+  convergence_cmd->add_option("scene", convergence.scene, "Scene file (TOML)")->required();
+  convergence_cmd->add_option("--out", convergence.out, "Output directory (one run per level inside)")->required();
+  convergence_cmd->add_option("--levels", convergence.levels, "Number of cell sizes, halving from the scene's")
+      ->check(CLI::Range(1, 8));
+  convergence_cmd->add_option("--ppc", convergence.particles_per_cell, "Particles per cell per axis to try at each level (e.g. 1 2 3)");
+  convergence_cmd->add_option("--reference", convergence.references, "A known value name=value to measure errors against");
+  convergence_cmd->add_option("--threads", convergence.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
+  convergence_cmd->add_option("--set", convergence.overrides, "Override a scene key: key.path=value (repeatable)");
+
+  const auto measure = hvi::driver::add_measure_command(app);
+  const auto fit = hvi::driver::add_fit_command(app);
 
   try {
     app.parse(argc, argv);
@@ -99,6 +130,16 @@ int main(int argc, char** argv) {
       return ExitCode::success;
     }
     if (*check_cmd) return check(scene_path, overrides);
+    if (*measure->command) return hvi::driver::measure_command(measure->options());
+    if (*fit->command) return hvi::driver::fit_command(fit->options);
+    if (*convergence_cmd) {
+      convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
+      return hvi::driver::run_convergence(convergence);
+    }
+    if (*geometry_cmd) {
+      if (threads > 0) omp_set_num_threads(threads);
+      return hvi::driver::geometry_command(hvi::scene::load_scene(scene_path, overrides), out_dir);
+    }
     if (*run_cmd) {
       hvi::driver::RunOptions options;
       options.threads = threads;

@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "cases/driver/build_solver.hpp"
+#include "cases/driver/measures.hpp"
 #include "hvi_git_revision.hpp"
 #include "mpm/io/checkpoint.hpp"
 #include "mpm/io/energy_log.hpp"
@@ -149,9 +150,17 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     fmt::print(stderr, "hvi: {}: {}\n", scene.file, e.what());
     return input_error;
   }
+  // A field measure needs a model that declares the field: check before anything is written.
+  for (const auto& m : scene.measures)
+    if (!m.field.empty() && (m.kind == "field_max" || m.kind == "field_min") && !solver->particles().has_field(m.field)) {
+      fmt::print(stderr, "hvi: {}: measure '{}': no particle field '{}' in this scene (is its model named?)\n",
+                 scene.file, m.name, m.field);
+      return input_error;
+    }
 
   if (options.overwrite && !options.resume) {
-    for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "timing.csv", "run.resumed.json"})
+    for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
+                          "run.resumed.json", "failure.h5"})
       fs::remove(dir / f);
     fs::remove_all(dir / "snapshots");
   }
@@ -165,6 +174,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1);
   Schedule output{scene.output_interval, 0.0}, checkpoints{scene.checkpoint_interval, scene.checkpoint_interval};
   double initial_energy = 0.0;
+  RunRecord record;  // what the scene's [[measure]]s need beyond the final state
   const auto particle_count = s.particles().size();
 
   if (options.resume) {
@@ -172,6 +182,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     output.next = extras.at("next_output_time");
     checkpoints.next = extras.at("next_checkpoint_time");
     initial_energy = extras.at("initial_energy");
+    record.peak_pressure = extras.at("peak_pressure");
     fmt::print("hvi: resuming {} at step {}, t = {:.6g} s ({} particles, {} threads)\n", dir.string(),
                s.step_count(), s.time(), particle_count, threads);
   } else {
@@ -185,6 +196,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     const mpm::EnergyReport e0 = s.energy();
     initial_energy = e0.total();
     energy_log.write(s, e0);
+    track(s, record);
     snapshots.write(s);
     output.advance(s.time());
   }
@@ -196,7 +208,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     mpm::io::write_checkpoint(dir / "checkpoint.h5", s,
                               {{"next_output_time", output.next},
                                {"next_checkpoint_time", checkpoints.next},
-                               {"initial_energy", initial_energy}});
+                               {"initial_energy", initial_energy},
+                               {"peak_pressure", record.peak_pressure}});
   };
   // A checkpoint exists from the start, so a run that fails always leaves one from before.
   if (!options.resume) checkpoint();
@@ -223,6 +236,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       if (s.step_count() % scene.energy_every == 0 || last) {
         auto t = timer.scope("energy");
         energy_log.write(s, s.energy());
+        track(s, record);
       }
       if (output.due(s.time()) || last) {
         auto t = timer.scope("write snapshots");
@@ -264,8 +278,12 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
              e.momentum[1] + e.removed_momentum[1], e.momentum[2] + e.removed_momentum[2]);
   if (s.removed().particles > 0)
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
+  record.initial_energy = initial_energy;
+  const auto measured = evaluate(scene.measures, s, record);
+  for (const auto& [name, value] : measured) fmt::print("  measure {} = {:.8g}\n", name, value);
   fmt::print("\n{}\n", timer.table());
   write_timing(dir, timer);
+  const char* status = code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped");
   toml::table summary{{"time", s.time()},
                       {"steps", s.step_count()},
                       {"particles", static_cast<std::int64_t>(s.particles().size())},
@@ -276,10 +294,17 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                       {"initial_energy", initial_energy},
                       {"energy_balance", balance},
                       {"removed_particles", s.removed().particles},
-                      {"removed_mass", s.removed().mass}};
+                      {"removed_mass", s.removed().mass},
+                      {"status", status}};
+  toml::table measures;
+  for (const auto& [name, value] : measured) measures.insert(name, value);
+  summary.insert("measures", measures);
   {
-    std::ofstream out(dir / "summary.json");
-    out << toml::json_formatter(summary) << '\n';
+    // JSON for scripts and Python; the same as TOML for hvi's own tools (hvi convergence).
+    std::ofstream json(dir / "summary.json");
+    json << toml::json_formatter(summary) << '\n';
+    std::ofstream tml(dir / "summary.toml");
+    tml << toml::toml_formatter(summary) << '\n';
   }
   fmt::print("output: {}  (particles.xmf for ParaView, energy.csv, summary.json, scene.resolved.toml)\n", dir.string());
   if (code == interrupted || (scene.max_steps > 0 && s.time() < end * (1 - 1e-12)))

@@ -13,6 +13,7 @@
 
 #include <toml++/toml.h>
 
+#include "cases/driver/measures.hpp"
 #include "cases/driver/schema.hpp"
 #include "mpm/materials/hydro_material.hpp"
 
@@ -72,14 +73,51 @@ struct CylinderShape {
   int axis;
   double radius, length;
 };
+// A solid bounded by a surface file: x = R (scale x_file) + translate, R = Rz Ry Rx.
+struct MeshShape {
+  std::string file;    // absolute path (resolved against the scene file's folder)
+  double scale = 1.0;  // the file's length unit in m, times the scene's scale
+  Vec3 rotate{}, translate{};
+  Vec3 lower{}, upper{};  // until the file is read: the grid (the builder checks the surface against it)
+};
+// One of the three bodies of a [[panel]].
+struct PanelPart {
+  enum Part { front, core, rear };
+  std::size_t panel = 0;  // index into Scene::panels
+  Part part = front;
+  Vec3 lower{}, upper{};  // the part's box (before any clip)
+};
 
 struct BodySettings {
   std::string name;
   std::size_t material = 0;  // index into Scene::materials
   Vec3 velocity{};
   int particles_per_cell = 2;
-  std::variant<SphereShape, BoxShape, CylinderShape> shape;
+  std::variant<SphereShape, BoxShape, CylinderShape, MeshShape, PanelPart> shape;
   std::optional<BoxShape> clip;  // keep only the part inside (half and quarter models)
+  // Where the body is declared, for problems found only when it is built (a refused surface
+  // file): the builder reports them as scene errors located here.
+  Diagnostic origin;
+};
+
+// A honeycomb sandwich panel ([[panel]]; geometry/honeycomb.hpp); its bodies are in
+// Scene::bodies as <name>.front, <name>.core, <name>.rear.
+struct PanelSettings {
+  std::string name;
+  double front_thickness = 0, rear_thickness = 0, wall_thickness = 0, cell_diameter = 0, core_height = 0;
+  std::array<double, 2> lower{}, upper{}, pattern_origin{};
+  double top = 0, rotation = 0;  // rotation in rad
+  std::string origin_at;         // cell-center | vertex | wall
+  bool double_walls = false;
+  std::string thin_walls;  // auto | lattice | point-type
+};
+
+// A refinement zone ([[refinement]]).
+struct RefinementSettings {
+  std::string name;
+  int factor = 2;
+  std::variant<BoxShape, CylinderShape> shape;
+  std::vector<std::size_t> bodies;  // indices into Scene::bodies it applies to
 };
 
 struct Scene {
@@ -92,9 +130,12 @@ struct Scene {
   GridSettings grid;
   std::vector<BoundarySettings> boundaries;
   std::vector<MaterialSettings> materials;
-  std::vector<BodySettings> bodies;
+  std::vector<BodySettings> bodies;  // [[body]] entries, then three per [[panel]]
+  std::vector<PanelSettings> panels;
+  std::vector<RefinementSettings> refinements;
   toml::table resolved;  // every key, defaults filled, SI values: written next to the output
   std::vector<std::string> warnings;  // likely mistakes that are not errors ("no EOS at 5 km/s")
+  std::vector<MeasureSettings> measures;  // [[measure]]: quantities of interest at the end
 };
 
 // Reads, overrides, validates and resolves a scene file. Throws SceneError.

@@ -1,5 +1,7 @@
 #include "cases/driver/scene_schema.hpp"
 
+#include "cases/driver/measures.hpp"
+
 #include "mpm/materials/library.hpp"
 
 namespace hvi::scene {
@@ -132,13 +134,24 @@ TableSpec body_table() {
       .quantity_required("radius", dims::length, positive(), "Radius")
       .quantity_required("length", dims::length, positive(), "Length along the axis");
 
+  TableSpec mesh{.name = "mesh",
+                 .doc = "A solid bounded by a closed triangle surface from a CAD file, placed by x = "
+                        "R (scale x_file) + translate with R = Rz Ry Rx. A surface that is not closed, "
+                        "intersects itself or is inside-out is refused."};
+  mesh.string_required("file", "STL (ASCII or binary), OFF, OBJ or PLY file, by its extension; relative to the scene file")
+      .choice_required("unit", {"m", "cm", "mm", "um", "in"}, "Length unit of the file's coordinates")
+      .number("scale", positive(), 1.0, "Factor applied to the coordinates after the unit")
+      .vector("rotate", dims::none, std::vector<double>{0, 0, 0},
+              "Rotations about x, then y, then z (angles: \"90 deg\", or radians)")
+      .vector("translate", dims::length, std::vector<double>{0, 0, 0}, "Translation, applied last");
+
   TableSpec clip{.name = "clip",
                  .doc = "Keep only the part of the body inside this box: a half or quarter model cut "
                         "on symmetry planes (pair it with [[boundary]] type = \"symmetry\")."};
   clip.vector_required("lower", dims::length, "Lower corner").vector_required("upper", dims::length, "Upper corner");
 
-  TableSpec t{.name = "body", .doc = "A body of material points; exactly one shape sub-table.",
-              .array = true, .required = true};
+  TableSpec t{.name = "body", .doc = "A body of material points; exactly one shape sub-table (a cube is a box). A scene needs at least one [[body]] or [[panel]].",
+              .array = true};
   t.string_required("name", "Unique name (used in messages and output)")
       .string_required("material", "Name of a [[material]]")
       .vector("velocity", dims::velocity, std::vector<double>{0, 0, 0}, "Initial velocity")
@@ -147,8 +160,77 @@ TableSpec body_table() {
       .table(sphere)
       .table(box)
       .table(cylinder)
+      .table(mesh)
       .table(clip);
-  t.one_of = {"sphere", "box", "cylinder"};
+  t.one_of = {"sphere", "box", "cylinder", "mesh"};
+  return t;
+}
+
+// A honeycomb sandwich panel (geometry/honeycomb.hpp): three bodies <name>.front, <name>.core,
+// <name>.rear, at rest.
+TableSpec panel_table() {
+  TableSpec clip{.name = "clip",
+                 .doc = "Keep only the part of the panel inside this box (a half or quarter model; "
+                        "pair it with [[boundary]] type = \"symmetry\")."};
+  clip.vector_required("lower", dims::length, "Lower corner").vector_required("upper", dims::length, "Upper corner");
+  TableSpec t{.name = "panel",
+              .doc = "A honeycomb sandwich panel in the x-y plane, struck along -z (paper Section 2.1, "
+                     "Fig. 1): front facesheet z in [top - t_f, top], core of height S below it, rear "
+                     "facesheet below the core. Becomes the bodies <name>.front, <name>.core and "
+                     "<name>.rear.",
+              .array = true};
+  t.string_required("name", "Unique name; the bodies are <name>.front, <name>.core, <name>.rear")
+      .string_required("front_material", "[[material]] of the front facesheet")
+      .string_required("core_material", "[[material]] of the honeycomb core")
+      .string_required("rear_material", "[[material]] of the rear facesheet")
+      .quantity_required("front_thickness", dims::length, positive(), "t_f")
+      .quantity_required("rear_thickness", dims::length, positive(), "t_r")
+      .quantity_required("wall_thickness", dims::length, positive(), "t_hc, the cell-wall foil thickness")
+      .quantity_required("cell_diameter", dims::length, positive(),
+                         "D_hc, the inscribed-circle diameter of a cell, between wall mid-surfaces")
+      .quantity_required("core_height", dims::length, positive(), "S, the distance between the facesheets")
+      .vector_required("lower", dims::length, "Lower corner (x, y) of the in-plane extent", 2)
+      .vector_required("upper", dims::length, "Upper corner (x, y) of the in-plane extent", 2)
+      .quantity_required("top", dims::length, Range{}, "z of the front face")
+      .number("rotation", Range{}, 0.0,
+              "Rotation of the cell pattern about z (angle: \"30 deg\", or radians); at 0 two walls "
+              "of each cell are parallel to y")
+      .vector("pattern_origin", dims::length, std::vector<double>{0, 0},
+              "Where the pattern feature named by origin_at sits (x, y): usually the impact axis", 2)
+      .choice("origin_at", {"cell-center", "vertex", "wall"}, "cell-center",
+              "What sits at pattern_origin: a cell centre, a wall vertex, or the middle of a wall")
+      .boolean("double_walls", false,
+               "Walls along the ribbon direction (parallel to y before rotation) 2 t_hc thick, as in "
+               "expanded honeycomb")
+      .integer("particles_per_cell", closed(1, 8), 2, "Material points per grid cell along each axis")
+      .choice("thin_walls", {"auto", "lattice", "point-type"}, "auto",
+              "Core sampling: point-type (one layer of points on each wall mid-surface carrying the "
+              "wall's volume, the paper's eq. 7), lattice, or auto (point-type when t_hc < 2 point "
+              "spacings)")
+      .table(clip);
+  return t;
+}
+
+// Zones where bodies are sampled with more points per cell (paper Fig. 4).
+TableSpec refinement_table() {
+  TableSpec box{.name = "box", .doc = "An axis-aligned box zone."};
+  box.vector_required("lower", dims::length, "Lower corner").vector_required("upper", dims::length, "Upper corner");
+  TableSpec cylinder{.name = "cylinder", .doc = "A circular cylinder zone along a coordinate axis."};
+  cylinder.vector_required("base_center", dims::length, "Centre of the base disc")
+      .choice_required("axis", {"x", "y", "z"}, "Direction of the axis")
+      .quantity_required("radius", dims::length, positive(), "Radius")
+      .quantity_required("length", dims::length, positive(), "Length along the axis");
+  TableSpec t{.name = "refinement",
+              .doc = "A zone sampled with factor times more points per cell along each axis (paper "
+                     "Fig. 4). The grid is unchanged; a grid-aligned lattice cell whose centre is in "
+                     "the zone is split into factor^3 cells.",
+              .array = true};
+  t.string("name", std::nullopt, "Optional name (for --set refinement.<name>.factor=...)")
+      .integer("factor", closed(2, 8), 2, "Points per coarse spacing along each axis inside the zone")
+      .string_list("bodies", {}, "Bodies it applies to (panel parts as <panel>.core, ...); empty: all")
+      .table(box)
+      .table(cylinder);
+  t.one_of = {"box", "cylinder"};
   return t;
 }
 
@@ -160,7 +242,10 @@ TableSpec make_schema() {
       .table(grid_table())
       .table(boundary_table())
       .table(material_table(library_names()))
-      .table(body_table());
+      .table(body_table())
+      .table(panel_table())
+      .table(refinement_table())
+      .table(measure_table());
   return root;
 }
 

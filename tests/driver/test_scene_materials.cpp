@@ -88,7 +88,7 @@ TEST(SceneMaterials, LibraryNameTypoGetsASuggestion) {
 
 TEST(SceneMaterials, FastImpactWithoutEquationOfStateWarns) {
   const std::string elastic = "name = \"m\"\nlibrary = \"Al6061\"";
-  // Bulk sound speed of Al6061 from E = 75 GPa, nu = 0.33: sqrt(K / rho) = 5.15 km/s; 5% is 258 m/s.
+  // Bulk sound speed of Al6061 from E = 75 GPa, nu = 0.33: sqrt(K / rho) = 5.15 km/s; 10% is 515 m/s.
   EXPECT_TRUE(parse_scene(scene_with(elastic, "200 m/s"), "s.toml").warnings.empty());
   const Scene fast = parse_scene(scene_with(elastic, "4.5 km/s"), "s.toml");
   ASSERT_EQ(fast.warnings.size(), 1u);

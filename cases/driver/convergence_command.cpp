@@ -1,0 +1,173 @@
+#include "cases/driver/convergence_command.hpp"
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "cases/driver/run.hpp"
+#include "cases/driver/scene.hpp"
+
+namespace hvi::driver {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Level {
+  std::string label;
+  double cell_size = 0;
+  int particles_per_cell = 0;  // 0: the scene's
+  // From the run's summary.
+  bool done = false;
+  double wall_seconds = 0, peak_memory = 0, particles = 0, steps = 0;
+  std::map<std::string, double> measures;
+};
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+bool read_summary(const fs::path& dir, Level& level) {
+  const fs::path file = dir / "summary.toml";
+  if (!fs::exists(file)) return false;
+  const toml::table t = toml::parse_file(file.string());
+  if (t["status"].value_or(std::string{}) != "finished") return false;
+  level.wall_seconds = t["wall_seconds"].value_or(0.0);
+  level.peak_memory = static_cast<double>(t["peak_memory_bytes"].value_or(std::int64_t{0}));
+  level.particles = static_cast<double>(t["particles"].value_or(std::int64_t{0}));
+  level.steps = static_cast<double>(t["steps"].value_or(std::int64_t{0}));
+  if (const auto* m = t["measures"].as_table())
+    for (const auto& [k, v] : *m) level.measures[std::string(k.str())] = v.value_or(std::numeric_limits<double>::quiet_NaN());
+  level.done = true;
+  return true;
+}
+
+// Observed order and Richardson extrapolation from the three finest levels of a halving ladder:
+//   p = log2(|q1 - q0| / |q2 - q1|),  q_ext = q2 + (q2 - q1) / (2^p - 1).
+struct Extrapolation {
+  double order = std::numeric_limits<double>::quiet_NaN();
+  double value = std::numeric_limits<double>::quiet_NaN();
+};
+
+Extrapolation richardson(double q0, double q1, double q2) {
+  Extrapolation e;
+  const double d1 = q1 - q0, d2 = q2 - q1;
+  if (d1 == 0.0 || d2 == 0.0 || d1 * d2 < 0.0) return e;  // not (monotonically) converging
+  e.order = std::log2(std::fabs(d1 / d2));
+  if (e.order > 0.0) e.value = q2 + d2 / (std::pow(2.0, e.order) - 1.0);
+  return e;
+}
+
+}  // namespace
+
+int run_convergence(const ConvergenceOptions& o) {
+  const scene::Scene base = scene::load_scene(o.scene, o.overrides);
+  std::vector<Level> levels;
+  const std::vector<int> ppcs = o.particles_per_cell.empty() ? std::vector<int>{0} : o.particles_per_cell;
+  for (int k = 0; k < o.levels; ++k)
+    for (const int ppc : ppcs) {
+      Level l;
+      l.cell_size = base.grid.cell_size / std::pow(2.0, k);
+      l.particles_per_cell = ppc;
+      l.label = ppc ? fmt::format("h{}_ppc{}", k, ppc) : fmt::format("h{}", k);
+      levels.push_back(l);
+    }
+  fs::create_directories(o.out);
+  for (auto& l : levels) {
+    const fs::path dir = fs::path(o.out) / l.label;
+    if (read_summary(dir, l)) {
+      fmt::print("hvi convergence: {} already done ({:.1f} s)\n", l.label, l.wall_seconds);
+      continue;
+    }
+    // The user's overrides first: the level's cell size and particle count come last and win.
+    std::string cmd = fmt::format("{} run {} --out {} --overwrite", quote(o.hvi), quote(o.scene), quote(dir.string()));
+    if (o.threads > 0) cmd += fmt::format(" --threads {}", o.threads);
+    for (const auto& s : o.overrides) cmd += " --set " + quote(s);
+    cmd += fmt::format(" --set grid.cell_size={:.17g}", l.cell_size);
+    if (l.particles_per_cell)
+      for (const auto& b : base.bodies) cmd += fmt::format(" --set body.{}.particles_per_cell={}", b.name, l.particles_per_cell);
+    cmd += " > " + quote((fs::path(o.out) / (l.label + ".log")).string()) + " 2>&1";
+    fmt::print("hvi convergence: running {} (cell {:.4g} m)\n", l.label, l.cell_size);
+    std::fflush(stdout);
+    const int status = std::system(cmd.c_str());
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !read_summary(dir, l)) {
+      fmt::print(stderr, "hvi convergence: level {} failed; see {}\n", l.label, (fs::path(o.out) / (l.label + ".log")).string());
+      return run_failed;
+    }
+  }
+
+  // Reference values: given, else Richardson-extrapolated from the three finest cell sizes
+  // (at the first particle count of the ladder).
+  std::map<std::string, double> reference;
+  std::map<std::string, Extrapolation> extrapolated;
+  std::vector<const Level*> halving;
+  for (const auto& l : levels)
+    if (l.particles_per_cell == ppcs.front()) halving.push_back(&l);
+  for (const auto& [name, value] : levels.back().measures) {
+    if (halving.size() >= 3) {
+      const auto n = halving.size();
+      extrapolated[name] = richardson(halving[n - 3]->measures.at(name), halving[n - 2]->measures.at(name),
+                                      halving[n - 1]->measures.at(name));
+      reference[name] = extrapolated[name].value;
+    }
+  }
+  for (const auto& r : o.references) {
+    const auto eq = r.find('=');
+    reference[r.substr(0, eq)] = std::stod(r.substr(eq + 1));
+  }
+
+  // CSV: one row per level and quantity.
+  std::ofstream csv(fs::path(o.out) / "convergence.csv");
+  csv << "level,cell_size,particles_per_cell,particles,steps,wall_seconds,peak_memory_bytes,quantity,value,reference,relative_error\n";
+  for (const auto& l : levels)
+    for (const auto& [name, value] : l.measures) {
+      const double ref = reference.count(name) ? reference.at(name) : std::numeric_limits<double>::quiet_NaN();
+      csv << fmt::format("{},{:.6g},{},{:.0f},{:.0f},{:.3f},{:.0f},{},{:.10g},{:.10g},{:.6g}\n", l.label, l.cell_size,
+                         l.particles_per_cell, l.particles, l.steps, l.wall_seconds, l.peak_memory, name, value, ref,
+                         (value - ref) / std::fabs(ref));
+    }
+  csv.close();
+
+  // Markdown: a table per quantity, error and cost side by side.
+  std::string md = fmt::format("# Convergence of {}\n\nCommand: `hvi convergence {} --levels {}`\n\n", o.scene, o.scene, o.levels);
+  for (const auto& entry : levels.back().measures) {
+    const std::string& name = entry.first;
+    const double ref = reference.count(name) ? reference.at(name) : std::numeric_limits<double>::quiet_NaN();
+    md += fmt::format("## {}\n\n", name);
+    if (extrapolated.count(name) && std::isfinite(extrapolated[name].order))
+      md += fmt::format("Observed order {:.2f}; Richardson-extrapolated value {:.6g}.\n\n", extrapolated[name].order,
+                        extrapolated[name].value);
+    if (std::isfinite(ref)) md += fmt::format("Reference: {:.6g}\n\n", ref);
+    else md += "No reference (three converging levels or --reference name=value are needed for errors).\n\n";
+    md += "| level | cell (mm) | ppc | particles | value | error vs reference | wall time (s) | peak memory (MB) |\n";
+    md += "|---|---|---|---|---|---|---|---|\n";
+    for (const auto& l : levels) {
+      const double v = l.measures.count(name) ? l.measures.at(name) : std::numeric_limits<double>::quiet_NaN();
+      const std::string error = std::isfinite(ref) ? fmt::format("{:+.2f}%", 100 * (v - ref) / std::fabs(ref)) : "—";
+      md += fmt::format("| {} | {:.4g} | {} | {:.0f} | {:.6g} | {} | {:.1f} | {:.0f} |\n", l.label, l.cell_size * 1e3,
+                        l.particles_per_cell ? std::to_string(l.particles_per_cell) : "scene", l.particles, v, error,
+                        l.wall_seconds, l.peak_memory / 1e6);
+    }
+    md += "\n";
+  }
+  std::ofstream(fs::path(o.out) / "convergence.md") << md;
+  fmt::print("{}", md);
+
+  // Plots: error against wall time, one panel per quantity (matplotlib).
+  // Debian's python3 (with python3-matplotlib) rather than another one earlier on the PATH.
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string plot = fmt::format("{} {} {} > /dev/null 2>&1", python, quote(std::string(HVI_SOURCE_DIR) + "/scripts/plot_convergence.py"),
+                                       quote(o.out));
+  if (std::system(plot.c_str()) == 0)
+    fmt::print("plots: {}\n", (fs::path(o.out) / "convergence.png").string());
+  else
+    fmt::print("(no plots: python3 with matplotlib not found; the CSV and Markdown are complete)\n");
+  return success;
+}
+
+}  // namespace hvi::driver

@@ -1,0 +1,61 @@
+#pragma once
+// Quantities of interest a scene asks to be measured at the end of a run ([[measure]] tables):
+// the numbers a resolution study follows (hvi convergence) and a user compares with experiment.
+//   extent_max / extent_min   largest / smallest particle coordinate along `axis` (+ offset)
+//   diameter                  2 (largest distance from the line through `center` along `axis`
+//                             + offset), over particles whose coordinate along `axis` lies in
+//                             [from, to]
+//   field_max / field_min     extreme of a particle field (e.g. plastic_strain, temperature)
+//   energy_error              (E_end - E_0) / E_0, E = kinetic + internal + dissipated + removed
+//   peak_pressure             the largest mean pressure seen at any energy.csv row
+// `body` restricts a geometric measure to one body. With `surface`, an extent or a diameter's
+// radius reaches from the extreme particle's centre to the surface: half its initial point spacing
+// (V0^(1/3) / 2) further, so that the same measure holds at any resolution.
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "cases/driver/schema.hpp"
+
+namespace hvi::mpm {
+class Solver;
+}
+
+namespace hvi::scene {
+
+struct MeasureSettings {
+  std::string name, kind, field, body;
+  int axis = 2;
+  double offset = 0.0;
+  bool surface = false;
+  std::optional<double> from, to;
+  std::array<double, 3> center{};
+};
+
+TableSpec measure_table();
+// Reads the resolved [[measure]] tables; problems go to `errors` (located by `v`).
+std::vector<MeasureSettings> read_measures(const toml::array& tables, const Validated& v,
+                                           const std::vector<std::string>& body_names,
+                                           std::vector<Diagnostic>& errors);
+
+}  // namespace hvi::scene
+
+namespace hvi::driver {
+
+// What a run tracks for the measures while it steps.
+struct RunRecord {
+  double initial_energy = 0.0;
+  double peak_pressure = 0.0;
+};
+
+// Updates the running maxima (called at every energy.csv row).
+void track(const mpm::Solver& solver, RunRecord& record);
+
+std::map<std::string, double> evaluate(const std::vector<scene::MeasureSettings>& measures,
+                                       const mpm::Solver& solver, const RunRecord& record);
+
+}  // namespace hvi::driver
