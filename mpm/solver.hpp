@@ -34,6 +34,9 @@ struct SolverSettings {
   double flip = 1.0;  // FLIP fraction of the particle velocity update; 1 = FLIP (paper), 0 = PIC
   double cfl = 0.5;   // dt = cfl h / max_p (c_p + |v_p|)
   double max_time_step = std::numeric_limits<double>::infinity();
+  // A run whose time step falls below this fraction of its first one has gone unstable (a
+  // particle is racing away): it stops with an error instead of crawling on.
+  double min_time_step_fraction = 1e-3;
   int reorder_interval = 16;  // steps between sorting particle arrays by material and block
 };
 
@@ -76,6 +79,7 @@ struct SolverState {
   double time = 0.0;
   std::int64_t step = 0;
   double next_dt = 0.0;
+  double first_dt = 0.0;  // the first step's, against which a collapsing step is judged
   RemovedMaterial removed;
 };
 
@@ -110,6 +114,10 @@ class Solver {
   double next_time_step() const { return state_.next_dt; }
   const SolverState& state() const { return state_; }
   const RemovedMaterial& removed() const { return state_.removed; }
+  // The particle moving fastest, and a one-line description of it (for instability messages).
+  std::size_t fastest_particle() const;
+  // Throws SolverError naming particle p, its body, material, position, the time and step.
+  [[noreturn]] void fail(std::size_t particle, const std::string& problem) const;
   // Removal events since the last call.
   std::vector<RemovalEvent> take_removal_events();
 
@@ -136,7 +144,6 @@ class Solver {
 
   void sort_by_material_and_block();
   void compute_material_ranges();
-  [[noreturn]] void fail(std::size_t particle, const std::string& problem) const;
   TransferContext transfer_context() const;
 
   GridGeometry geometry_;

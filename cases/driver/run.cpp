@@ -235,8 +235,15 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       const bool last = s.time() >= end * (1 - 1e-12);
       if (s.step_count() % scene.energy_every == 0 || last) {
         auto t = timer.scope("energy");
-        energy_log.write(s, s.energy());
+        const mpm::EnergyReport e = s.energy();
+        energy_log.write(s, e);
         track(s, record);
+        if (scene.max_energy_growth > 0 && e.total() - initial_energy > scene.max_energy_growth * std::fabs(initial_energy))
+          s.fail(s.fastest_particle(),
+                 fmt::format("the total energy grew by {:.0f}% (run.max_energy_growth = {:.0f}%): the run is unstable; "
+                             "this particle moves fastest, at {:.4g} m/s",
+                             100 * (e.total() / initial_energy - 1), 100 * scene.max_energy_growth,
+                             mpm::speed(s.particles(), s.fastest_particle())));
       }
       if (output.due(s.time()) || last) {
         auto t = timer.scope("write snapshots");

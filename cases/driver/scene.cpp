@@ -335,8 +335,8 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
 constexpr double eos_warning_fraction = 0.10;
 
 // A body narrower than this many cells meets other bodies through a handful of grid nodes: the
-// grid compresses it before it decelerates (a 0.4-cell projectile at 4.5 km/s gained 19% of its
-// energy at cfl 0.5, 2.3% at cfl 0.1, in cases/stability).
+// grid compresses it before it decelerates (a 0.4-cell projectile at 4.5 km/s gained 29% of its
+// energy at cfl 0.5, 1.3% at cfl 0.05, in cases/stability).
 constexpr double resolved_cells = 2.0;
 
 void add_warnings(Scene& s) {
@@ -348,8 +348,8 @@ void add_warnings(Scene& s) {
     if (cells < resolved_cells && s.bodies.size() > 1)
       s.warnings.push_back(fmt::format(
           "body '{}' is {:.2g} cells across (under {:.0f}): its contact with other bodies is under-resolved "
-          "and can create energy (19% for a 0.4-cell projectile at cfl 0.5); refine the grid or lower "
-          "grid.cfl (2% at 0.1)",
+          "and can create energy (29% for a 0.4-cell projectile at cfl 0.5); refine the grid or lower "
+          "grid.cfl (1.3% at 0.05)",
           b.name, cells, resolved_cells));
   }
   double impact = 0.0;
@@ -388,6 +388,7 @@ Scene resolve(const toml::table& document, const std::string& file) {
   const toml::table& run = *r["run"].as_table();
   s.end_time = number(run, "end_time");
   s.max_steps = integer(run, "max_steps");
+  s.max_energy_growth = number(run, "max_energy_growth");
   read_grid(*r["grid"].as_table(), s, c);
   read_boundaries(*s.resolved["boundary"].as_array(), s, c);
   read_materials(*s.resolved["material"].as_array(), s, c);

@@ -125,6 +125,7 @@ struct Scene {
   std::string title;
   double end_time = 0.0;
   std::int64_t max_steps = 0;
+  double max_energy_growth = 0.5;
   double output_interval = 0.0, checkpoint_interval = 0.0;
   std::int64_t energy_every = 10;
   GridSettings grid;

@@ -18,7 +18,10 @@ TableSpec run_table() {
   t.quantity_required("end_time", dims::time, positive(), "Simulated time at which the run stops")
       .integer("max_steps", non_negative(), 0,
                "Stop after this many steps (0: no limit); a checkpoint is written so the run can "
-               "be resumed");
+               "be resumed")
+      .number("max_energy_growth", non_negative(), 0.5,
+              "Stop with an error when the total energy exceeds the initial by this fraction (0: "
+              "never): the run has gone unstable");
   return t;
 }
 

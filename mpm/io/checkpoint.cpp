@@ -28,6 +28,7 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
     file.write_attribute("time", s.time);
     file.write_attribute("step", static_cast<std::int64_t>(s.step));
     file.write_attribute("next_dt", s.next_dt);
+    file.write_attribute("first_dt", s.first_dt);
     file.write_attribute("removed_particles", static_cast<std::int64_t>(s.removed.particles));
     file.write_attribute("removed_mass", s.removed.mass);
     file.write_attribute("removed_kinetic", s.removed.kinetic);
@@ -61,6 +62,7 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
   s.time = file.read_double_attribute("time");
   s.step = file.read_integer_attribute("step");
   s.next_dt = file.read_double_attribute("next_dt");
+  s.first_dt = file.read_double_attribute("first_dt");
   s.removed.particles = file.read_integer_attribute("removed_particles");
   s.removed.mass = file.read_double_attribute("removed_mass");
   s.removed.kinetic = file.read_double_attribute("removed_kinetic");

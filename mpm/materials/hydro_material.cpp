@@ -221,7 +221,7 @@ void HydroMaterial::update_pressure(Particles& P, ParticleRange r, double dt) co
     double p_new;
     if (mg) {
       const double e_star = e - (0.5 * p_old + q) * dV / m;
-      const double B = mg->energy_coefficient();
+      const double B = mg->energy_coefficient(rho);  // at the end-of-step density
       p_new = (mg->cold_part(rho) + B * e_star) / (1.0 + 0.5 * B * dV / m);
       if (is_failed) p_new = std::max(p_new, 0.0);
       e = e_star - 0.5 * p_new * dV / m;

@@ -5,12 +5,17 @@
 //   p_H = rho0 c0^2 mu (1 + mu) / [1 - (s - 1) mu]^2   (mu >= 0; the paper prints c0 for c0^2)
 //   p_H = rho0 c0^2 mu                                   (mu < 0, tension)
 //   p   = p_H (1 - Gamma mu / 2) + Gamma rho e,   Gamma rho = Gamma0 rho0   (mu >= 0)
-//   p   = p_H + Gamma0 rho0 e                                              (mu < 0)
+//   p   = p_H + Gamma0 rho e                                               (mu < 0)
 // with e the current specific internal energy (J/kg). The paper's "gamma0 E0" is read as
 // Gamma0 rho0 e: E0 the internal energy per unit reference volume, integrated per particle.
-// In tension the (1 - Gamma mu / 2) factor is left out, as LS-DYNA's *EOS_GRUNEISEN does: with
-// Gamma = Gamma0 rho0 / rho it diverges as rho -> 0 (expanded debris at 10 km/s reached
-// p = -80 rho0 c0^2 and a sound speed of 440 km/s with it).
+// In expansion the form changes in two ways, both because Gamma = Gamma0 rho0 / rho diverges as
+// rho -> 0 (debris expanded hundreds of times in a honeycomb impact):
+//  - the (1 - Gamma mu / 2) factor is left out, as LS-DYNA's *EOS_GRUNEISEN does (with it, 10 km/s
+//    debris reached p = -80 rho0 c0^2 and a 440 km/s sound speed);
+//  - Gamma stays Gamma0 (p = Gamma0 rho e, an ideal-gas-like thermal pressure), so that the
+//    energy-pressure coupling dp/de = Gamma rho stays bounded by Gamma0 rho0; with Gamma0 rho0 the
+//    implicit energy update of a particle expanded 250-fold lost positivity and drove e to 2e9 J/kg.
+// Both are continuous with the compression branch at rho0.
 #include <algorithm>
 #include <cmath>
 
@@ -40,25 +45,28 @@ struct MieGruneisen {
     const double den = 1.0 - (s - 1.0) * mu;
     return K0 * ((1.0 + 2.0 * mu) * den + 2.0 * (s - 1.0) * mu * (1.0 + mu)) / (den * den * den);
   }
-  // Pressure = A(rho) + B e: the part independent of e, and B = Gamma0 rho0.
+  // Pressure = A(rho) + B(rho) e: the part independent of e, and B = dp/de at fixed density.
   double cold_part(double rho) const {
     const double mu = rho / reference_density - 1.0;
     if (mu < 0.0) return hugoniot_pressure(mu);
     const double gamma = gamma0 / (1.0 + mu);  // Gamma = Gamma0 rho0 / rho
     return hugoniot_pressure(mu) * (1.0 - 0.5 * gamma * mu);
   }
-  double energy_coefficient() const { return gamma0 * reference_density; }
-  double pressure(double rho, double e) const { return cold_part(rho) + energy_coefficient() * e; }
+  double energy_coefficient(double rho) const { return gamma0 * std::min(rho, reference_density); }
+  double pressure(double rho, double e) const { return cold_part(rho) + energy_coefficient(rho) * e; }
 
   // Squared bulk sound speed c^2 = dp/drho|_e + p / rho^2 dp/de|_rho, floored at a tenth of c0^2
   // so that a state in tension keeps a meaningful time step.
   double bulk_sound_speed_squared(double rho, double p) const {
     const double mu = rho / reference_density - 1.0;
+    const double B = energy_coefficient(rho);
+    // In expansion d(Gamma0 rho e)/dmu = Gamma0 rho0 e, with e recovered from p.
+    const double e = (p - cold_part(rho)) / B;
     const double dp_dmu_e =
-        mu < 0.0 ? hugoniot_slope(mu)
+        mu < 0.0 ? hugoniot_slope(mu) + gamma0 * reference_density * std::max(e, 0.0)
                  : hugoniot_slope(mu) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) -
                        hugoniot_pressure(mu) * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
-    const double c2 = dp_dmu_e / reference_density + p * energy_coefficient() / (rho * rho);
+    const double c2 = dp_dmu_e / reference_density + p * B / (rho * rho);
     return std::max(c2, 0.1 * c0 * c0);
   }
 };

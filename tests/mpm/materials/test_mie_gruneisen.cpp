@@ -27,16 +27,19 @@ TEST(MieGruneisen, PressureEqualsEquationsFourAndFive) {
     EXPECT_NEAR(mg.pressure(1.2 * rho0, e), expected, 1e-12 * expected);
     EXPECT_NEAR(expected, 1.8809e10, 1e6);  // 18.8 GPa computed by hand (calculator), 5 digits
   }
-  // Tension: rho = 0.95 rho0, e = 1e5 J/kg: the linear branch plus the energy term (no
-  // (1 - Gamma mu / 2) factor in tension, as LS-DYNA).
+  // Tension: rho = 0.95 rho0, e = 1e5 J/kg: the linear branch plus a thermal pressure with
+  // constant Gamma0 (no (1 - Gamma mu / 2) factor, and Gamma rho = Gamma0 rho in expansion).
   {
     const double mu = 0.95 - 1, e = 1e5;
-    const double expected = rho0 * c0 * c0 * mu + g0 * rho0 * e;
+    const double expected = rho0 * c0 * c0 * mu + g0 * 0.95 * rho0 * e;
     EXPECT_NEAR(mg.pressure(0.95 * rho0, e), expected, 1e-12 * std::fabs(expected));
   }
   // Far expanded debris keeps a bounded pressure and sound speed.
   EXPECT_GT(mg.pressure(rho0 / 80, 5e5), -rho0 * c0 * c0);
-  EXPECT_NEAR(mg.bulk_sound_speed_squared(rho0 / 80, 0.0), c0 * c0, 1e-9 * c0 * c0);
+  EXPECT_NEAR(mg.bulk_sound_speed_squared(rho0 / 80, mg.pressure(rho0 / 80, 0.0)), 0.1 * c0 * c0, 1e-9 * c0 * c0);
+  // The energy coefficient dp/de is continuous at rho0 and bounded by Gamma0 rho0 in expansion.
+  EXPECT_DOUBLE_EQ(mg.energy_coefficient(rho0), g0 * rho0);
+  EXPECT_DOUBLE_EQ(mg.energy_coefficient(rho0 / 250), g0 * rho0 / 250);
   // Reference state: no pressure.
   EXPECT_EQ(mg.pressure(rho0, 0.0), 0.0);
 }
