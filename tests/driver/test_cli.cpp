@@ -118,4 +118,22 @@ TEST(Cli, FailedRunNamesTheParticleAndLeavesACheckpointFromBefore) {
   EXPECT_TRUE(fs::exists(out / "failure.h5"));
 }
 
+// A run whose energy runs away stops at the first energy row past run.max_energy_growth, naming
+// the fastest particle. (A 0.4-cell projectile gains ~29% at cfl 0.5: see test_stability.)
+TEST(Cli, EnergyRunawayStopsTheRun) {
+  const fs::path out = scratch("runaway");
+  const std::string stability = std::string(HVI_SOURCE_DIR) + "/cases/stability/hypervelocity_10kms.toml";
+  std::string err;
+  EXPECT_EQ(run("run " + stability + " --out " + out.string() +
+                    " --threads 1 --set grid.cell_size=5e-4 --set body.projectile.velocity=[0,0,-4500]"
+                    " --set body.projectile.sphere.radius=2e-4 --set body.projectile.sphere.center=[0,0,0.5e-3]"
+                    " --set body.projectile.particles_per_cell=4 --set run.end_time=1e-6"
+                    " --set output.energy_every=1 --set run.max_energy_growth=0.1",
+                &err),
+            3);
+  EXPECT_NE(err.find("the total energy grew by"), std::string::npos) << err;
+  EXPECT_NE(err.find("(run.max_energy_growth = 10%)"), std::string::npos) << err;
+  EXPECT_NE(err.find("this particle moves fastest"), std::string::npos) << err;
+}
+
 }  // namespace
