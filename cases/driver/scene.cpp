@@ -340,6 +340,18 @@ constexpr double eos_warning_fraction = 0.10;
 constexpr double resolved_cells = 2.0;
 
 void add_warnings(Scene& s) {
+  // A honeycomb core without a failure model cannot perforate: its walls only bend and stretch.
+  for (const auto& b : s.bodies) {
+    const auto* part = std::get_if<PanelPart>(&b.shape);
+    if (!part || part->part != PanelPart::core) continue;
+    const MaterialSettings& m = s.materials[b.material];
+    if (m.damage == "none" && m.failure == "none")
+      s.warnings.push_back(fmt::format(
+          "body '{}' is a honeycomb core whose material '{}' names no damage or failure model: its walls "
+          "cannot break, so a projectile is channelled by walls that never fail; name damage = \"johnson-cook\" "
+          "(the paper's) or failure = \"max-principal-stress\"",
+          b.name, m.name));
+  }
   for (const auto& b : s.bodies) {
     auto box = bounds_of(b);
     double widest = 0.0;  // a plate or a honeycomb wall is thin but wide: only small blobs warn

@@ -98,3 +98,22 @@ TEST(SceneMaterials, FastImpactWithoutEquationOfStateWarns) {
 
 }  // namespace
 }  // namespace hvi::scene
+
+namespace hvi::scene {
+namespace {
+
+// A honeycomb whose core cannot fail only channels: `hvi check` says so.
+TEST(SceneMaterials, HoneycombCoreWithoutFailureWarns) {
+  const std::string study = std::string(HVI_SOURCE_DIR) + "/cases/paper/study_1g.toml";
+  auto core_warnings = [](const Scene& s) {
+    int n = 0;
+    for (const auto& w : s.warnings) n += w.find("is a honeycomb core") != std::string::npos;
+    return n;
+  };
+  EXPECT_EQ(core_warnings(load_scene(study)), 0);
+  const Scene s = load_scene(study, {"material.Al5052.damage=none"});
+  EXPECT_EQ(core_warnings(s), 1);
+}
+
+}  // namespace
+}  // namespace hvi::scene
