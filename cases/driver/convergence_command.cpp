@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -123,13 +124,20 @@ int run_convergence(const ConvergenceOptions& o) {
 
   // CSV: one row per level and quantity.
   std::ofstream csv(fs::path(o.out) / "convergence.csv");
+  // An energy_error measure is an error already: its reference is 0 and its error its value.
+  std::set<std::string> is_error;
+  for (const auto& m : base.measures)
+    if (m.kind == "energy_error") is_error.insert(m.name);
+  auto relative_error = [&](const std::string& name, double value, double ref) {
+    return is_error.count(name) ? value : (value - ref) / std::fabs(ref);
+  };
   csv << "level,cell_size,particles_per_cell,particles,steps,wall_seconds,peak_memory_bytes,quantity,value,reference,relative_error\n";
   for (const auto& l : levels)
     for (const auto& [name, value] : l.measures) {
       const double ref = reference.count(name) ? reference.at(name) : std::numeric_limits<double>::quiet_NaN();
       csv << fmt::format("{},{:.6g},{},{:.0f},{:.0f},{:.3f},{:.0f},{},{:.10g},{:.10g},{:.6g}\n", l.label, l.cell_size,
                          l.particles_per_cell, l.particles, l.steps, l.wall_seconds, l.peak_memory, name, value, ref,
-                         (value - ref) / std::fabs(ref));
+                         relative_error(name, value, ref));
     }
   csv.close();
 
@@ -142,13 +150,15 @@ int run_convergence(const ConvergenceOptions& o) {
     if (extrapolated.count(name) && std::isfinite(extrapolated[name].order))
       md += fmt::format("Observed order {:.2f}; Richardson-extrapolated value {:.6g}.\n\n", extrapolated[name].order,
                         extrapolated[name].value);
-    if (std::isfinite(ref)) md += fmt::format("Reference: {:.6g}\n\n", ref);
+    if (is_error.count(name)) md += "The value is itself the relative error of the energy balance.\n\n";
+    else if (std::isfinite(ref)) md += fmt::format("Reference: {:.6g}\n\n", ref);
     else md += "No reference (three converging levels or --reference name=value are needed for errors).\n\n";
     md += "| level | cell (mm) | ppc | particles | value | error vs reference | wall time (s) | peak memory (MB) |\n";
     md += "|---|---|---|---|---|---|---|---|\n";
     for (const auto& l : levels) {
       const double v = l.measures.count(name) ? l.measures.at(name) : std::numeric_limits<double>::quiet_NaN();
-      const std::string error = std::isfinite(ref) ? fmt::format("{:+.2f}%", 100 * (v - ref) / std::fabs(ref)) : "—";
+      const double err = relative_error(name, v, ref);
+      const std::string error = std::isfinite(err) ? fmt::format("{:+.3g}%", 100 * err) : "—";
       md += fmt::format("| {} | {:.4g} | {} | {:.0f} | {:.6g} | {} | {:.1f} | {:.0f} |\n", l.label, l.cell_size * 1e3,
                         l.particles_per_cell ? std::to_string(l.particles_per_cell) : "scene", l.particles, v, error,
                         l.wall_seconds, l.peak_memory / 1e6);
