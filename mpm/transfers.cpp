@@ -75,11 +75,12 @@ struct Setup {
   }
 };
 
-template <class Shape, Scatter What>
-void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s) {
-  constexpr bool mass = What != Scatter::force;
-  constexpr bool momentum = What != Scatter::force;
-  constexpr bool force = What == Scatter::mass_momentum_force || What == Scatter::force;
+// Runs f(b, blocks, origin) for every owner block b, with blocks[o] the eight blocks its
+// particles' stencils reach and origin its first node. Coloured: blocks of one colour in
+// parallel, colour after colour, so f may write nodes (see particle_bins.hpp). Plain: all blocks
+// in parallel, f may only read nodes.
+template <class F>
+void for_each_block_coloured(const ParticleBins& bins, SparseGrid& grid, F&& f) {
   for (const auto& colour : bins.colour) {
     const auto count = static_cast<std::int64_t>(colour.size());
 #pragma omp parallel for schedule(dynamic, 1)
@@ -87,44 +88,67 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
       const std::uint32_t b = colour[i];
       GridNode* blocks[8];
       for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
-      const auto origin = grid.block_origin(b);
-      NodeStencil<Shape> st;
-      for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-        const std::uint32_t p = bins.order[k];
-        double a_cells[3];
-        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
-        const double m = P.mass[p];
-        const double* v = &P.velocity[3 * p];
-        const double mv[3] = {m * v[0], m * v[1], m * v[2]};
-        double vs[6] = {};  // V_p sigma_p
-        if constexpr (force) {
-          const double V = P.volume[p];
-          for (int c = 0; c < 6; ++c) vs[c] = V * P.stress[6 * p + c];
-        }
-        st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double* g) {
-          if constexpr (mass) n.mass += w * m;
-          if constexpr (momentum) {
-            n.p[0] += w * mv[0];
-            n.p[1] += w * mv[1];
-            n.p[2] += w * mv[2];
-          }
-          if constexpr (force) {
-            n.f[0] -= vs[sym::xx] * g[0] + vs[sym::xy] * g[1] + vs[sym::xz] * g[2];
-            n.f[1] -= vs[sym::xy] * g[0] + vs[sym::yy] * g[1] + vs[sym::yz] * g[2];
-            n.f[2] -= vs[sym::xz] * g[0] + vs[sym::yz] * g[1] + vs[sym::zz] * g[2];
-          }
-        });
-      }
+      f(b, blocks, grid.block_origin(b));
     }
   }
 }
 
+template <class F>
+void for_each_block(const ParticleBins& bins, const SparseGrid& grid, F&& f) {
+  const auto owners = static_cast<std::int64_t>(bins.owner_count());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t i = 0; i < owners; ++i) {
+    const auto b = static_cast<std::uint32_t>(i);
+    const GridNode* blocks[8];
+    for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
+    f(b, blocks, grid.block_origin(b));
+  }
+}
+
+template <class Shape, Scatter What>
+void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s) {
+  constexpr bool mass = What != Scatter::force;
+  constexpr bool momentum = What != Scatter::force;
+  constexpr bool force = What == Scatter::mass_momentum_force || What == Scatter::force;
+  for_each_block_coloured(
+      bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
+        NodeStencil<Shape> st;
+        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+          const std::uint32_t p = bins.order[k];
+          double a_cells[3];
+          st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+          const double m = P.mass[p];
+          const double* v = &P.velocity[3 * p];
+          const double mv[3] = {m * v[0], m * v[1], m * v[2]};
+          double vs[6] = {};  // V_p sigma_p
+          if constexpr (force) {
+            const double V = P.volume[p];
+            for (int c = 0; c < 6; ++c) vs[c] = V * P.stress[6 * p + c];
+          }
+          st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double* g) {
+            if constexpr (mass) n.mass += w * m;
+            if constexpr (momentum) {
+              n.p[0] += w * mv[0];
+              n.p[1] += w * mv[1];
+              n.p[2] += w * mv[2];
+            }
+            if constexpr (force) {
+              n.f[0] -= vs[sym::xx] * g[0] + vs[sym::xy] * g[1] + vs[sym::xz] * g[2];
+              n.f[1] -= vs[sym::xy] * g[0] + vs[sym::yy] * g[1] + vs[sym::yz] * g[2];
+              n.f[2] -= vs[sym::xz] * g[0] + vs[sym::yz] * g[1] + vs[sym::zz] * g[2];
+            }
+          });
+        }
+      });
+}
+
 // One particle's velocity update; with Remap also its share of the remapped momentum.
 template <class Shape, bool Remap, class Blocks>
-void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks, const std::array<int, 3>& origin,
-                        const Setup& s, double flip, NodeStencil<Shape>& st) {
+void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks,
+                        const std::array<int, 3>& origin, const Setup& s, double flip,
+                        NodeStencil<Shape>& st) {
   double a_cells[3];
-        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+  st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
   double dv[3] = {0, 0, 0}, vg[3] = {0, 0, 0};
   st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
     for (int d = 0; d < 3; ++d) {
@@ -151,63 +175,51 @@ void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks, const std:
 template <class Shape>
 void gather_velocity(Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
                      double flip, bool remap) {
-  if (remap) {
-    // Scatters too: colour by colour, like particles_to_grid.
-    for (const auto& colour : bins.colour) {
-      const auto count = static_cast<std::int64_t>(colour.size());
-#pragma omp parallel for schedule(dynamic, 1)
-      for (std::int64_t i = 0; i < count; ++i) {
-        const std::uint32_t b = colour[i];
-        GridNode* blocks[8];
-        for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
-        const auto origin = grid.block_origin(b);
-        NodeStencil<Shape> st;
-        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
-          gather_velocity_of<Shape, true>(P, bins.order[k], blocks, origin, s, flip, st);
-      }
-    }
+  if (remap) {  // scatters too: colour by colour, like particles_to_grid
+    for_each_block_coloured(
+        bins, grid,
+        [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
+          NodeStencil<Shape> st;
+          for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
+            gather_velocity_of<Shape, true>(P, bins.order[k], blocks, origin, s, flip, st);
+        });
     return;
   }
-  const auto owners = static_cast<std::int64_t>(bins.owner_count());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t b = 0; b < owners; ++b) {
-    const GridNode* blocks[8];
-    for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
-    const auto origin = grid.block_origin(static_cast<std::uint32_t>(b));
-    NodeStencil<Shape> st;
-    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
-      gather_velocity_of<Shape, false>(P, bins.order[k], blocks, origin, s, flip, st);
-  }
+  for_each_block(
+      bins, grid,
+      [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
+        NodeStencil<Shape> st;
+        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
+          gather_velocity_of<Shape, false>(P, bins.order[k], blocks, origin, s, flip, st);
+      });
 }
 
 template <class Shape, NodalVelocity Which>
-void gather_gradient(Particles& P, const ParticleBins& bins, const SparseGrid& grid, const Setup& s) {
-  const auto owners = static_cast<std::int64_t>(bins.owner_count());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t b = 0; b < owners; ++b) {
-    const GridNode* blocks[8];
-    for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
-    const auto origin = grid.block_origin(static_cast<std::uint32_t>(b));
-    NodeStencil<Shape> st;
-    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-      const std::uint32_t p = bins.order[k];
-      double a_cells[3];
-        st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
-      double L[9] = {};
-      st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
-        double v[3];
-        for (int d = 0; d < 3; ++d) {
-          if constexpr (Which == NodalVelocity::start) v[d] = n.p[d];
-          if constexpr (Which == NodalVelocity::end) v[d] = n.p[d] + n.f[d];
-          if constexpr (Which == NodalVelocity::remapped) v[d] = n.q[d];
+void gather_gradient(Particles& P, const ParticleBins& bins, const SparseGrid& grid,
+                     const Setup& s) {
+  for_each_block(
+      bins, grid,
+      [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
+        NodeStencil<Shape> st;
+        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+          const std::uint32_t p = bins.order[k];
+          double a_cells[3];
+          st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+          double L[9] = {};
+          st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
+            double v[3];
+            for (int d = 0; d < 3; ++d) {
+              if constexpr (Which == NodalVelocity::start) v[d] = n.p[d];
+              if constexpr (Which == NodalVelocity::end) v[d] = n.p[d] + n.f[d];
+              if constexpr (Which == NodalVelocity::remapped) v[d] = n.q[d];
+            }
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) L[3 * i + j] += v[i] * g[j];
+          });
+          double* Lp = &P.velocity_gradient[9 * p];
+          for (int c = 0; c < 9; ++c) Lp[c] = L[c];
         }
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) L[3 * i + j] += v[i] * g[j];
       });
-      double* Lp = &P.velocity_gradient[9 * p];
-      for (int c = 0; c < 9; ++c) Lp[c] = L[c];
-    }
-  }
 }
 
 Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
@@ -219,9 +231,15 @@ template <class Shape>
 void scatter_dispatch(Scatter what, const Particles& P, const ParticleBins& bins, SparseGrid& grid,
                       const Setup& s) {
   switch (what) {
-    case Scatter::mass_momentum_force: scatter<Shape, Scatter::mass_momentum_force>(P, bins, grid, s); break;
-    case Scatter::mass_momentum: scatter<Shape, Scatter::mass_momentum>(P, bins, grid, s); break;
-    case Scatter::force: scatter<Shape, Scatter::force>(P, bins, grid, s); break;
+    case Scatter::mass_momentum_force:
+      scatter<Shape, Scatter::mass_momentum_force>(P, bins, grid, s);
+      break;
+    case Scatter::mass_momentum:
+      scatter<Shape, Scatter::mass_momentum>(P, bins, grid, s);
+      break;
+    case Scatter::force:
+      scatter<Shape, Scatter::force>(P, bins, grid, s);
+      break;
   }
 }
 
@@ -251,16 +269,22 @@ void velocity_gradient(Particles& particles, const ParticleBins& bins, const Spa
   const bool linear = context.shape == ShapeFunction::linear;
   switch (which) {
     case NodalVelocity::start:
-      if (linear) gather_gradient<LinearShape, NodalVelocity::start>(particles, bins, grid, s);
-      else gather_gradient<GimpShape, NodalVelocity::start>(particles, bins, grid, s);
+      if (linear)
+        gather_gradient<LinearShape, NodalVelocity::start>(particles, bins, grid, s);
+      else
+        gather_gradient<GimpShape, NodalVelocity::start>(particles, bins, grid, s);
       break;
     case NodalVelocity::end:
-      if (linear) gather_gradient<LinearShape, NodalVelocity::end>(particles, bins, grid, s);
-      else gather_gradient<GimpShape, NodalVelocity::end>(particles, bins, grid, s);
+      if (linear)
+        gather_gradient<LinearShape, NodalVelocity::end>(particles, bins, grid, s);
+      else
+        gather_gradient<GimpShape, NodalVelocity::end>(particles, bins, grid, s);
       break;
     case NodalVelocity::remapped:
-      if (linear) gather_gradient<LinearShape, NodalVelocity::remapped>(particles, bins, grid, s);
-      else gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s);
+      if (linear)
+        gather_gradient<LinearShape, NodalVelocity::remapped>(particles, bins, grid, s);
+      else
+        gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s);
       break;
   }
 }

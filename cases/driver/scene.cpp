@@ -278,18 +278,11 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
     const std::string path = element_path("body", t, i);
     BodySettings b;
     b.name = text(t, "name");
-    const std::string material = text(t, "material");
-    bool found = false;
-    for (std::size_t m = 0; m < s.materials.size(); ++m)
-      if (s.materials[m].name == material) {
-        b.material = m;
-        found = true;
-      }
-    if (!found) {
-      std::string names;
-      for (const auto& m : s.materials) names += (names.empty() ? "'" : ", '") + m.name + "'";
-      c.error(path + ".material", fmt::format("no [[material]] named '{}'; defined: {}", material, names));
-    }
+    std::string problem;
+    if (const auto m = detail::find_material(s, text(t, "material"), &problem))
+      b.material = *m;
+    else
+      c.error(path + ".material", problem);
     b.velocity = vec3(t, "velocity");
     b.particles_per_cell = static_cast<int>(integer(t, "particles_per_cell"));
     if (const auto* sp = t["sphere"].as_table()) {

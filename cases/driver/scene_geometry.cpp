@@ -6,6 +6,15 @@
 
 namespace hvi::scene::detail {
 
+std::optional<std::size_t> find_material(const Scene& s, const std::string& name, std::string* problem) {
+  for (std::size_t m = 0; m < s.materials.size(); ++m)
+    if (s.materials[m].name == name) return m;
+  std::string names;
+  for (const auto& m : s.materials) names += (names.empty() ? "'" : ", '") + m.name + "'";
+  *problem = fmt::format("no [[material]] named '{}'; defined: {}", name, names);
+  return std::nullopt;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -128,19 +137,11 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
     for (int part = 0; part < 3; ++part) {
       BodySettings b;
       b.name = p.name + "." + parts[part];
-      const std::string material = text(t, fmt::format("{}_material", parts[part]).c_str());
-      bool found = false;
-      for (std::size_t m = 0; m < s.materials.size(); ++m)
-        if (s.materials[m].name == material) {
-          b.material = m;
-          found = true;
-        }
-      if (!found) {
-        std::string names;
-        for (const auto& m : s.materials) names += (names.empty() ? "'" : ", '") + m.name + "'";
-        error(fmt::format("{}.{}_material", path, parts[part]),
-              fmt::format("no [[material]] named '{}'; defined: {}", material, names));
-      }
+      std::string problem;
+      if (const auto m = find_material(s, text(t, fmt::format("{}_material", parts[part]).c_str()), &problem))
+        b.material = *m;
+      else
+        error(fmt::format("{}.{}_material", path, parts[part]), problem);
       b.particles_per_cell =
           static_cast<int>(t["particles_per_cell"].value<std::int64_t>().value());
       b.shape = PanelPart{s.panels.size(), static_cast<PanelPart::Part>(part),

@@ -2,6 +2,7 @@
 // Internal to the scene layer (scene.cpp): the geometry tables of a scene. [[panel]] entries become
 // three bodies each; [[refinement]] zones name the bodies they refine; a [[body]] mesh file is
 // resolved against the scene file's folder. Problems are appended as located diagnostics.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@ namespace hvi::scene::detail {
 
 // Rewrites each [[body]] mesh.file as an absolute path (relative paths are relative to the folder
 // of `scene_file`) so that the resolved scene, read back from a run directory, finds it too.
+// The index of the [[material]] named `name`, or a message naming the defined ones.
+std::optional<std::size_t> find_material(const Scene& s, const std::string& name, std::string* problem);
+
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
                         std::vector<Diagnostic>& errors);
 MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid);
