@@ -449,12 +449,83 @@ void apply_overrides(toml::table& document, const std::vector<std::string>& over
   if (!errors.empty()) throw SceneError(errors);
 }
 
+Diagnostic located(const toml::node& node, const std::string& file, std::string key, std::string message) {
+  Diagnostic d;
+  d.file = node.source().path ? std::string(*node.source().path) : file;
+  d.line = static_cast<int>(node.source().begin.line);
+  d.column = static_cast<int>(node.source().begin.column);
+  d.key = std::move(key);
+  d.message = std::move(message);
+  return d;
+}
+
+// A value as TOML text, for an override assignment.
+std::string toml_text(const toml::node& value) {
+  toml::table wrapper;
+  value.visit([&](const auto& v) { wrapper.insert("v", v); });
+  std::stringstream out;
+  out << toml::toml_formatter(wrapper, toml::format_flags::none);
+  std::string text = out.str();
+  return text.substr(text.find('=') + 1);
+}
+
+// Named override sets: a scene may define [resolutions.<name>] tables of "key.path" = value
+// entries; `resolution = "<name>"` (in the file or given as --set resolution=<name>) applies one,
+// then the command-line overrides are applied again so that they win. The sets themselves are
+// dropped: the resolved scene records the values they set and the chosen name.
+void apply_resolution(toml::table& document, const std::string& file) {
+  const toml::node* sets_node = document.get("resolutions");
+  const toml::node* name_node = document.get("resolution");
+  std::vector<Diagnostic> errors;
+  if (sets_node && !sets_node->is_table()) {
+    errors.push_back(located(*sets_node, file, "resolutions",
+                             "expected a table of named override tables, [resolutions.<name>]"));
+    throw SceneError(errors);
+  }
+  const toml::table empty;
+  const toml::table& sets = sets_node ? *sets_node->as_table() : empty;
+  std::vector<std::string> names;
+  for (const auto& [name, set] : sets) {
+    names.emplace_back(name.str());
+    if (!set.is_table()) {
+      errors.push_back(located(set, file, "resolutions." + std::string(name.str()),
+                               "expected a table of \"key.path\" = value overrides"));
+    }
+  }
+  if (!errors.empty()) throw SceneError(errors);
+  const std::string choice = name_node && name_node->is_string() ? name_node->as_string()->get() : "";
+  if (!choice.empty()) {
+    const toml::table* set = sets.get_as<toml::table>(choice);
+    if (!set) {
+      Diagnostic d = located(*name_node, file, "resolution",
+                             fmt::format("the scene defines no [resolutions.{}]; it defines: {}", choice,
+                                         names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+      d.value = fmt::format("\"{}\"", choice);
+      throw SceneError({d});
+    }
+    const toml::table chosen = *set;  // copied: applying may not touch the table it reads
+    for (const auto& [key, value] : chosen) {
+      const std::string assignment = std::string(key.str()) + "=" + toml_text(value);
+      try {
+        apply_override(document, assignment,
+                       fmt::format("{} [resolutions.{}] {}", file, choice, key.str()));
+      } catch (const std::invalid_argument& e) {
+        errors.push_back(located(value, file, fmt::format("resolutions.{}.{}", choice, key.str()), e.what()));
+      }
+    }
+  }
+  if (!errors.empty()) throw SceneError(errors);
+  document.erase("resolutions");
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& file,
                   const std::vector<std::string>& overrides) {
   toml::table document = parse_document(text, file);
-  apply_overrides(document, overrides);
+  apply_overrides(document, overrides);  // a --set resolution=<name> picks the set
+  apply_resolution(document, file);
+  apply_overrides(document, overrides);  // the command line wins over the set
   return resolve(document, file);
 }
 

@@ -240,6 +240,9 @@ TableSpec refinement_table() {
 TableSpec make_schema() {
   TableSpec root;
   root.string("title", "", "A line describing the scene");
+  root.string("resolution", "",
+              "Name of a [resolutions.<name>] table of the scene whose \"key.path\" = value entries are "
+              "applied as overrides before the command line's --set (e.g. coarse, paper); empty: none");
   root.table(run_table())
       .table(output_table())
       .table(grid_table())

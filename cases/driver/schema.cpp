@@ -1010,6 +1010,10 @@ std::string element_names(const toml::array& array) {
 }  // namespace
 
 void apply_override(toml::table& document, const std::string& assignment) {
+  apply_override(document, assignment, "--set " + assignment);
+}
+
+void apply_override(toml::table& document, const std::string& assignment, const std::string& source) {
   const std::size_t eq = assignment.find('=');
   if (eq == std::string::npos) {
     throw std::invalid_argument(
@@ -1018,7 +1022,6 @@ void apply_override(toml::table& document, const std::string& assignment) {
   const std::vector<std::string> parts =
       split_path(std::string_view(assignment).substr(0, eq), assignment);
   const std::string value(trim(std::string_view(assignment).substr(eq + 1)));
-  const std::string source = "--set " + assignment;
 
   // The key region of "v" in the parsed override: used for every key the override creates, so
   // that an unknown key introduced on the command line is reported against "--set ...".

@@ -124,6 +124,8 @@ Validated validate(const toml::table& document, const TableSpec& root, const std
 // source path "--set <assignment>", line 1. Throws std::invalid_argument when the assignment has
 // no '=', has an empty path component, or names an array element or table that does not exist.
 void apply_override(toml::table& document, const std::string& assignment);
+// The same with the diagnostics' source named `source` (e.g. "scene.toml [resolutions.coarse]").
+void apply_override(toml::table& document, const std::string& assignment, const std::string& source);
 
 // Markdown reference of every key (for `hvi keys` and the README).
 std::string markdown_reference(const TableSpec& root);

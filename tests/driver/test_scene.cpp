@@ -182,5 +182,45 @@ TEST(Scene, EveryErrorIsReportedNotJustTheFirst) {
   }
 }
 
+// Named override sets: [resolutions.<name>] tables of "key.path" = value entries, chosen by
+// `resolution` in the file or on the command line; the command line wins over the set.
+const std::string with_resolutions = "resolution = \"coarse\"\n" + valid + R"(
+[resolutions.coarse]
+"grid.cell_size" = "1 mm"
+"body.ball.particles_per_cell" = 1
+
+[resolutions.fine]
+"grid.cell_size" = "0.25 mm"
+"body.ball.velocity" = ["0 m/s", "0 m/s", "-2 km/s"]
+)";
+
+TEST(Scene, ResolutionSetsApplyTheirOverrides) {
+  const Scene coarse = parse_scene(with_resolutions, "scene.toml");
+  EXPECT_DOUBLE_EQ(coarse.grid.cell_size, 1e-3);
+  EXPECT_EQ(coarse.bodies[0].particles_per_cell, 1);
+  EXPECT_EQ(coarse.resolved["resolution"].value<std::string>().value(), "coarse");
+  EXPECT_FALSE(coarse.resolved.contains("resolutions"));  // the resolved scene holds the values
+
+  const Scene fine = parse_scene(with_resolutions, "scene.toml", {"resolution=fine"});
+  EXPECT_DOUBLE_EQ(fine.grid.cell_size, 0.25e-3);
+  EXPECT_DOUBLE_EQ(fine.bodies[0].velocity[2], -2000.0);
+  EXPECT_EQ(fine.bodies[0].particles_per_cell, 2);  // the default: "fine" does not set it
+
+  const Scene mixed = parse_scene(with_resolutions, "scene.toml", {"resolution=fine", "grid.cell_size=0.5 mm"});
+  EXPECT_DOUBLE_EQ(mixed.grid.cell_size, 0.5e-3);  // the command line wins
+}
+
+TEST(Scene, UnknownResolutionNamesTheOnesDefined) {
+  const Diagnostic d = first_error(with_resolutions, {"resolution=paper"});
+  EXPECT_EQ(d.key, "resolution");
+  EXPECT_TRUE(contains(d.message, "coarse, fine")) << d.text();
+}
+
+TEST(Scene, BadValueInAResolutionSetNamesTheSet) {
+  const Diagnostic d = first_error(replace(with_resolutions, "\"1 mm\"", "\"1 kg\""));
+  EXPECT_EQ(d.key, "grid.cell_size");
+  EXPECT_TRUE(contains(d.text(), "[resolutions.coarse]")) << d.text();
+}
+
 }  // namespace
 }  // namespace hvi::scene
