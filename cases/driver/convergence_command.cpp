@@ -1,6 +1,5 @@
 #include "cases/driver/convergence_command.hpp"
 
-#include <sys/wait.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "cases/driver/child_run.hpp"
 #include "cases/driver/run.hpp"
 #include "cases/driver/scene.hpp"
 
@@ -34,16 +34,13 @@ struct Level {
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 
 bool read_summary(const fs::path& dir, Level& level) {
-  const fs::path file = dir / "summary.toml";
-  if (!fs::exists(file)) return false;
-  const toml::table t = toml::parse_file(file.string());
-  if (t["status"].value_or(std::string{}) != "finished") return false;
-  level.wall_seconds = t["wall_seconds"].value_or(0.0);
-  level.peak_memory = static_cast<double>(t["peak_memory_bytes"].value_or(std::int64_t{0}));
-  level.particles = static_cast<double>(t["particles"].value_or(std::int64_t{0}));
-  level.steps = static_cast<double>(t["steps"].value_or(std::int64_t{0}));
-  if (const auto* m = t["measures"].as_table())
-    for (const auto& [k, v] : *m) level.measures[std::string(k.str())] = v.value_or(std::numeric_limits<double>::quiet_NaN());
+  const RunSummary s = read_run_summary(dir);
+  if (!s.finished()) return false;
+  level.wall_seconds = s.wall_seconds;
+  level.peak_memory = s.peak_memory;
+  level.particles = s.particles;
+  level.steps = s.steps;
+  level.measures = s.measures;
   level.done = true;
   return true;
 }
@@ -86,17 +83,17 @@ int run_convergence(const ConvergenceOptions& o) {
       continue;
     }
     // The user's overrides first: the level's cell size and particle count come last and win.
-    std::string cmd = fmt::format("{} run {} --out {} --overwrite", quote(o.hvi), quote(o.scene), quote(dir.string()));
-    if (o.threads > 0) cmd += fmt::format(" --threads {}", o.threads);
-    for (const auto& s : o.overrides) cmd += " --set " + quote(s);
-    cmd += fmt::format(" --set grid.cell_size={:.17g}", l.cell_size);
+    std::vector<std::string> args{"run", o.scene, "--out", dir.string(), "--overwrite"};
+    if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
+    for (const auto& s : o.overrides) args.insert(args.end(), {"--set", s});
+    args.insert(args.end(), {"--set", fmt::format("grid.cell_size={:.17g}", l.cell_size)});
     if (l.particles_per_cell)
-      for (const auto& b : base.bodies) cmd += fmt::format(" --set body.{}.particles_per_cell={}", b.name, l.particles_per_cell);
-    cmd += " > " + quote((fs::path(o.out) / (l.label + ".log")).string()) + " 2>&1";
+      for (const auto& b : base.bodies)
+        args.insert(args.end(), {"--set", fmt::format("body.{}.particles_per_cell={}", b.name, l.particles_per_cell)});
     fmt::print("hvi convergence: running {} (cell {:.4g} m)\n", l.label, l.cell_size);
     std::fflush(stdout);
-    const int status = std::system(cmd.c_str());
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !read_summary(dir, l)) {
+    const int status = run_child(o.hvi, args, fs::path(o.out) / (l.label + ".log"));
+    if (status != 0 || !read_summary(dir, l)) {
       fmt::print(stderr, "hvi convergence: level {} failed; see {}\n", l.label, (fs::path(o.out) / (l.label + ".log")).string());
       return run_failed;
     }

@@ -9,6 +9,8 @@
 //   hvi measure RUN_DIR [--snapshot N|last] [--axis x0,y0] [--resolution R]...
 //                                                  hole sizes, bulge, debris (measurements.json)
 //   hvi fit CSV_OR_DIR --form front|rear|taper     the dimensional-analysis power laws
+//   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
+//                                                  a grid of runs, resumable; DIR/sweep.csv
 #include <omp.h>
 
 #include <filesystem>
@@ -22,6 +24,7 @@
 #include "cases/driver/convergence_command.hpp"
 #include "cases/driver/geometry_command.hpp"
 #include "cases/driver/run.hpp"
+#include "cases/driver/sweep_command.hpp"
 #include "cases/driver/scene.hpp"
 #include "cases/driver/scene_schema.hpp"
 #include "hvi_git_revision.hpp"
@@ -111,6 +114,15 @@ int main(int argc, char** argv) {
   convergence_cmd->add_option("--threads", convergence.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
   convergence_cmd->add_option("--set", convergence.overrides, "Override a scene key: key.path=value (repeatable)");
 
+  hvi::driver::SweepOptions sweep;
+  auto* sweep_cmd = app.add_subcommand("sweep", "Run a study (a grid of scenes), resumably; one row per run in DIR/sweep.csv");
+  sweep_cmd->add_option("study", sweep.study, "Study file (TOML: scene, [[axis]] levels, [[run]]s)")->required();
+  sweep_cmd->add_option("--out", sweep.out, "Output directory (one run per directory inside)")->required();
+  sweep_cmd->add_option("--threads", sweep.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
+  sweep_cmd->add_option("--set", sweep.overrides, "Override a scene key in every run: key.path=value (repeatable)");
+  sweep_cmd->add_option("--only", sweep.only, "Run only these runs (names)");
+  sweep_cmd->add_flag("--list", sweep.list, "Print the runs with their overrides and exit");
+
   const auto measure = hvi::driver::add_measure_command(app);
   const auto fit = hvi::driver::add_fit_command(app);
 
@@ -135,6 +147,10 @@ int main(int argc, char** argv) {
     if (*convergence_cmd) {
       convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
       return hvi::driver::run_convergence(convergence);
+    }
+    if (*sweep_cmd) {
+      sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
+      return hvi::driver::run_sweep(sweep);
     }
     if (*geometry_cmd) {
       if (threads > 0) omp_set_num_threads(threads);

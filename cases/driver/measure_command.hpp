@@ -71,5 +71,11 @@ int measure_command(const MeasureOptions& options);
 
 // The files, for tests and scripts.
 void write_measurements(const Measurements& m, const std::filesystem::path& dir);
+// The printed report (mm).
+void print_measurements(const Measurements& m);
+// The headline numbers, SI, for a run's summary (the [[measure]] kind "holes"): front_perforated
+// and rear_perforated (1 or 0), D_f, e_f, D_r, e_r (where perforated), taper, bulge (where not
+// perforated), debris_mass.
+std::vector<std::pair<std::string, double>> headline_quantities(const Measurements& m);
 
 }  // namespace hvi::driver

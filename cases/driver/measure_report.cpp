@@ -185,8 +185,25 @@ void write_measurements(const Measurements& m, const fs::path& dir) {
   if (m.rear_view) write_pgm(dir / "top_view_rear.pgm", *m.rear_view);
 }
 
-int measure_command(const MeasureOptions& options) {
-  const Measurements m = measure_run(options);
+std::vector<std::pair<std::string, double>> headline_quantities(const Measurements& m) {
+  std::vector<std::pair<std::string, double>> q;
+  auto sheet = [&](const std::optional<SheetMeasurement>& s, const char* which) {
+    if (!s) return;
+    q.emplace_back(fmt::format("{}_perforated", which), s->hole.perforated ? 1.0 : 0.0);
+    if (!s->hole.perforated) return;
+    const char c = which[0];
+    q.emplace_back(fmt::format("D_{}", c), s->hole.D);
+    q.emplace_back(fmt::format("e_{}", c), s->hole.eccentricity);
+  };
+  sheet(m.front, "front");
+  sheet(m.rear, "rear");
+  if (m.taper) q.emplace_back("taper", *m.taper);
+  if (m.bulge) q.emplace_back("bulge", m.bulge->displacement);
+  if (!m.debris_behind.empty()) q.emplace_back("debris_mass", m.debris.mass);
+  return q;
+}
+
+void print_measurements(const Measurements& m) {
   fmt::print("hvi measure {}: {} at t = {:.4g} us (step {})\n", m.run.string(),
              m.snapshot_file.filename().string(), m.time * 1e6, m.step);
   fmt::print("impact axis ({:.4f}, {:.4f}) mm along -z", m.axis[0] / mm, m.axis[1] / mm);
@@ -210,6 +227,11 @@ int measure_command(const MeasureOptions& options) {
         m.debris_behind, m.debris_threshold / mm, m.debris_back_face / mm, m.debris.mass * 1e3,
         m.debris.particles, m.debris.axial_extent / mm, m.debris.radial_extent / mm);
   for (const auto& n : m.notes) fmt::print("note: {}\n", n);
+}
+
+int measure_command(const MeasureOptions& options) {
+  const Measurements m = measure_run(options);
+  print_measurements(m);
   write_measurements(m, options.run);
   fmt::print("output: {} and measurements.csv{}\n", (options.run / "measurements.json").string(),
              options.images ? ", top_view_*.pgm" : "");

@@ -11,7 +11,7 @@ TableSpec measure_table() {
               .doc = "A quantity measured at the end of the run (summary.json, hvi convergence).",
               .array = true};
   t.string_required("name", "Name of the quantity in the outputs")
-      .choice_required("kind", {"extent_max", "extent_min", "diameter", "field_max", "field_min", "energy_error", "peak_pressure"},
+      .choice_required("kind", {"extent_max", "extent_min", "diameter", "field_max", "field_min", "energy_error", "peak_pressure", "holes"},
                        "What to measure (see the README's Measures section)")
       .choice("axis", {"x", "y", "z"}, "z", "Axis of an extent, or of the line a diameter is measured around")
       .string("body", "", "Restrict a geometric measure to this body (default: all)")
@@ -47,6 +47,8 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
       errors.push_back(v.at(path + ".body", fmt::format("no body named '{}'", m.body)));
     if ((m.kind == "field_max" || m.kind == "field_min") && m.field.empty())
       errors.push_back(v.at(path, "a field measure needs `field` (e.g. \"plastic_strain\")"));
+    if (m.kind == "holes" && std::any_of(out.begin(), out.end(), [](const auto& o) { return o.kind == "holes"; }))
+      errors.push_back(v.at(path + ".kind", "the holes are measured once per run: a second kind = \"holes\" measure"));
     for (const auto& other : out)
       if (other.name == m.name) errors.push_back(v.at(path + ".name", "a measure of this name is already defined"));
     out.push_back(m);

@@ -8,6 +8,10 @@
 //   field_max / field_min     extreme of a particle field (e.g. plastic_strain, temperature)
 //   energy_error              (E_end - E_0) / E_0, E = kinetic + internal + dissipated + removed
 //   peak_pressure             the largest mean pressure seen at any energy.csv row
+//   holes                     the panel's hole measurements (hvi measure, paper eqs. 8-12) on the
+//                             final snapshot: front_perforated, D_f, e_f, rear_perforated, D_r,
+//                             e_r, taper, bulge, debris_mass (measurements.json has the rest);
+//                             `body`: the front sheet (default: the panel's)
 // `body` restricts a geometric measure to one body. With `surface`, an extent or a diameter's
 // radius reaches from the extreme particle's centre to the surface: half its initial point spacing
 // (V0^(1/3) / 2) further, so that the same measure holds at any resolution.

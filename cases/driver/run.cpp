@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -14,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "cases/driver/build_solver.hpp"
+#include "cases/driver/measure_command.hpp"
 #include "cases/driver/measures.hpp"
 #include "hvi_git_revision.hpp"
 #include "mpm/io/checkpoint.hpp"
@@ -286,11 +288,28 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (s.removed().particles > 0)
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
   record.initial_energy = initial_energy;
-  const auto measured = evaluate(scene.measures, s, record);
+  auto measured = evaluate(scene.measures, s, record);
   for (const auto& [name, value] : measured) fmt::print("  measure {} = {:.8g}\n", name, value);
   fmt::print("\n{}\n", timer.table());
   write_timing(dir, timer);
-  const char* status = code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped");
+  const bool finished = code != interrupted && s.time() >= end * (1 - 1e-12);
+  const char* status = code == interrupted ? "interrupted" : (finished ? "finished" : "stopped");
+  // The panel's holes, from the final snapshot (as hvi measure RUN_DIR does).
+  const auto holes = std::find_if(scene.measures.begin(), scene.measures.end(), [](const auto& m) { return m.kind == "holes"; });
+  if (holes != scene.measures.end() && finished) {
+    try {
+      MeasureOptions mo;
+      mo.run = dir;
+      mo.front = holes->body;  // empty: the panel's front facesheet
+      const Measurements m = measure_run(mo);
+      fmt::print("\n");
+      print_measurements(m);
+      write_measurements(m, dir);
+      for (const auto& [name, value] : headline_quantities(m)) measured[name] = value;
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "hvi: the holes could not be measured: {}\n", e.what());
+    }
+  }
   toml::table summary{{"time", s.time()},
                       {"steps", s.step_count()},
                       {"particles", static_cast<std::int64_t>(s.particles().size())},

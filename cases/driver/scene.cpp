@@ -406,6 +406,9 @@ Scene resolve(const toml::table& document, const std::string& file) {
     std::vector<std::string> body_names;
     for (const auto& b : s.bodies) body_names.push_back(b.name);
     s.measures = read_measures(*r["measure"].as_array(), v, body_names, c.errors);
+    for (const auto& m : s.measures)
+      if (m.kind == "holes" && m.body.empty() && s.panels.empty())
+        c.error("measure." + m.name, "a holes measure needs a [[panel]], or `body` naming the plate whose hole it measures");
   }
 
   toml::table& output = *s.resolved["output"].as_table();

@@ -229,7 +229,7 @@ TableSpec refinement_table() {
                      "the zone is split into factor^3 cells.",
               .array = true};
   t.string("name", std::nullopt, "Optional name (for --set refinement.<name>.factor=...)")
-      .integer("factor", closed(2, 8), 2, "Points per coarse spacing along each axis inside the zone")
+      .integer("factor", closed(1, 8), 2, "Points per coarse spacing along each axis inside the zone (1: no refinement)")
       .string_list("bodies", {}, "Bodies it applies to (panel parts as <panel>.core, ...); empty: all")
       .table(box)
       .table(cylinder);

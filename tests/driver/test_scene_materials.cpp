@@ -104,7 +104,7 @@ namespace {
 
 // A honeycomb whose core cannot fail only channels: `hvi check` says so.
 TEST(SceneMaterials, HoneycombCoreWithoutFailureWarns) {
-  const std::string study = std::string(HVI_SOURCE_DIR) + "/cases/paper/study_1g.toml";
+  const std::string study = std::string(HVI_SOURCE_DIR) + "/cases/paper/study/panel.toml";
   auto core_warnings = [](const Scene& s) {
     int n = 0;
     for (const auto& w : s.warnings) n += w.find("is a honeycomb core") != std::string::npos;

@@ -154,13 +154,13 @@ TEST(GeometryCommand, RefusedSurfaceWritesNothing) {
 TEST(GeometryCommand, PaperScenesAreValid) {
   std::string out;
   EXPECT_EQ(run("check " + source +
-                    "/cases/paper/study_1g.toml --set grid.cell_size=\"1 mm\" --set "
+                    "/cases/paper/study/panel.toml --set grid.cell_size=\"1 mm\" --set "
                     "refinement.impact.factor=2",
                 &out),
             0)
       << out;
   EXPECT_EQ(
-      run("check " + source + "/cases/paper/validation_panel.toml --set grid.cell_size=\"0.5 mm\"",
+      run("check " + source + "/cases/paper/validation/panel.toml --set grid.cell_size=\"0.5 mm\"",
           &out),
       0)
       << out;

@@ -1,0 +1,57 @@
+#include "cases/driver/child_run.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <limits>
+
+#include <toml++/toml.h>
+
+namespace hvi::driver {
+
+namespace {
+// Single quotes for the shell; a quote inside becomes '\''.
+std::string quote(const std::string& s) {
+  std::string out(1, '\'');
+  for (const char c : s) {
+    if (c == '\'') {
+      out.append("'\\''");
+    } else {
+      out.push_back(c);
+    }
+  }
+  out.push_back('\'');
+  return out;
+}
+}  // namespace
+
+int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log) {
+  std::string command = quote(hvi);
+  for (const auto& a : args) {
+    command.push_back(' ');
+    command.append(quote(a));
+  }
+  command.append(" > ");
+  command.append(quote(log.string()));
+  command.append(" 2>&1");
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+RunSummary read_run_summary(const std::filesystem::path& run_dir) {
+  RunSummary s;
+  const auto file = run_dir / "summary.toml";
+  if (!std::filesystem::exists(file)) return s;
+  const toml::table t = toml::parse_file(file.string());
+  s.status = t["status"].value_or(std::string{});
+  s.wall_seconds = t["wall_seconds"].value_or(0.0);
+  s.peak_memory = static_cast<double>(t["peak_memory_bytes"].value_or(std::int64_t{0}));
+  s.particles = static_cast<double>(t["particles"].value_or(std::int64_t{0}));
+  s.steps = static_cast<double>(t["steps"].value_or(std::int64_t{0}));
+  s.energy_balance = t["energy_balance"].value_or(0.0);
+  if (const auto* m = t["measures"].as_table())
+    for (const auto& [k, v] : *m) s.measures[std::string(k.str())] = v.value_or(std::numeric_limits<double>::quiet_NaN());
+  return s;
+}
+
+}  // namespace hvi::driver

@@ -1,0 +1,25 @@
+#pragma once
+// Runs of this executable as child processes (hvi convergence, hvi sweep): each run is an ordinary
+// `hvi run` in its own directory with its own log, so it can be inspected, resumed or re-run
+// alone, and its peak memory is its own.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace hvi::driver {
+
+// Runs `hvi ARGS...` with stdout and stderr to `log`; returns the exit code (-1 if it did not
+// exit normally).
+int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log);
+
+// What a finished run's summary.toml says.
+struct RunSummary {
+  std::string status;  // finished, stopped, interrupted; empty: no summary
+  double wall_seconds = 0, peak_memory = 0, particles = 0, steps = 0, energy_balance = 0;
+  std::map<std::string, double> measures;
+  bool finished() const { return status == "finished"; }
+};
+RunSummary read_run_summary(const std::filesystem::path& run_dir);
+
+}  // namespace hvi::driver

@@ -1,0 +1,316 @@
+#include "cases/driver/sweep_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "cases/driver/child_run.hpp"
+#include "cases/driver/run.hpp"
+#include "cases/driver/scene.hpp"
+#include "cases/driver/schema.hpp"
+
+namespace hvi::driver {
+
+namespace fs = std::filesystem;
+using scene::Diagnostic;
+using scene::SceneError;
+using scene::TableSpec;
+
+namespace {
+
+const TableSpec& study_schema() {
+  static const TableSpec schema = [] {
+    TableSpec root;
+    root.string("title", "", "A line describing the study")
+        .string_required("scene", "The scene every run starts from (relative to the study file)")
+        .string_list("set", {}, "Overrides key.path=value for every run (e.g. resolution=coarse)");
+    TableSpec level{.name = "level", .doc = "One value of an axis", .array = true, .required = true};
+    level.string_required("label", "Name of the level in run names and sweep.csv")
+        .string_list("set", {}, "Overrides key.path=value of this level");
+    TableSpec axis{.name = "axis", .doc = "A parameter varied over levels; the runs are the product of the axes", .array = true};
+    axis.string_required("name", "Column of sweep.csv holding the level's label").table(level);
+    TableSpec run{.name = "run", .doc = "A run listed on its own", .array = true};
+    run.string_required("name", "Name of the run (its directory)").string_list("set", {}, "Overrides key.path=value of this run");
+    root.table(axis).table(run);
+    return root;
+  }();
+  return schema;
+}
+
+std::vector<std::string> strings(const toml::node* node) {
+  std::vector<std::string> out;
+  if (const auto* a = node ? node->as_array() : nullptr)
+    for (const auto& v : *a) out.push_back(v.value<std::string>().value());
+  return out;
+}
+
+bool valid_name(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return false;
+  for (const char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return true;
+}
+
+// CSV cell: quoted when it holds a comma or a quote.
+std::string csv(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (const char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cell += c, ++i;
+      else if (c == '"') quoted = false;
+      else cell += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      cells.push_back(cell);
+      cell.clear();
+    } else {
+      cell += c;
+    }
+  }
+  cells.push_back(cell);
+  return cells;
+}
+
+// The single data row of a run's measurements.csv, by column.
+std::vector<std::pair<std::string, std::string>> read_measurements(const fs::path& dir) {
+  std::ifstream in(dir / "measurements.csv");
+  std::string header, row;
+  if (!in || !std::getline(in, header) || !std::getline(in, row)) return {};
+  const auto h = split_csv_line(header), r = split_csv_line(row);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::size_t k = 0; k < h.size() && k < r.size(); ++k) out.emplace_back(h[k], r[k]);
+  return out;
+}
+
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
+
+// sweep.csv from what the run directories hold now.
+void write_table(const Study& study, const fs::path& out, const std::map<std::string, std::string>& status_of) {
+  std::vector<std::string> axes;
+  for (const auto& r : study.runs)
+    for (const auto& [axis, label] : r.labels)
+      if (std::find(axes.begin(), axes.end(), axis) == axes.end()) axes.push_back(axis);
+  std::vector<std::string> columns{"run"};
+  columns.insert(columns.end(), axes.begin(), axes.end());
+  for (const char* c : {"status", "wall_seconds", "steps", "particles", "peak_memory_bytes", "energy_balance"}) columns.emplace_back(c);
+  const std::size_t fixed = columns.size();
+  std::vector<std::map<std::string, std::string>> rows;
+  for (const auto& r : study.runs) {
+    std::map<std::string, std::string> row{{"run", r.name}};
+    for (const auto& [axis, label] : r.labels) row[axis] = label;
+    const fs::path dir = out / r.name;
+    const RunSummary s = read_run_summary(dir);
+    const auto st = status_of.find(r.name);
+    row["status"] = st != status_of.end() ? st->second : (s.status.empty() ? "not run" : s.status);
+    if (!s.status.empty()) {
+      row["wall_seconds"] = number(s.wall_seconds);
+      row["steps"] = number(s.steps);
+      row["particles"] = number(s.particles);
+      row["peak_memory_bytes"] = number(s.peak_memory);
+      row["energy_balance"] = number(s.energy_balance);
+    }
+    auto add = [&](const std::string& column, const std::string& value) {
+      if (row.count(column)) return;
+      row[column] = value;
+      if (std::find(columns.begin() + static_cast<std::ptrdiff_t>(fixed), columns.end(), column) == columns.end()) columns.push_back(column);
+    };
+    for (const auto& [column, value] : read_measurements(dir))
+      if (column != "run") add(column, value);
+    for (const auto& [name, value] : s.measures) add(name, number(value));
+    rows.push_back(std::move(row));
+  }
+  std::ofstream file(out / "sweep.csv");
+  for (std::size_t k = 0; k < columns.size(); ++k) file << (k ? "," : "") << csv(columns[k]);
+  file << '\n';
+  for (const auto& row : rows) {
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const auto it = row.find(columns[k]);
+      file << (k ? "," : "") << (it == row.end() ? "" : csv(it->second));
+    }
+    file << '\n';
+  }
+}
+
+}  // namespace
+
+Study load_study(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) {
+    Diagnostic d;
+    d.file = path;
+    d.message = "cannot read the study file";
+    throw SceneError({d});
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  toml::table document;
+  try {
+    document = toml::parse(buffer.str(), path);
+  } catch (const toml::parse_error& e) {
+    Diagnostic d;
+    d.file = path;
+    d.line = static_cast<int>(e.source().begin.line);
+    d.column = static_cast<int>(e.source().begin.column);
+    d.message = fmt::format("not valid TOML: {}", e.description());
+    throw SceneError({d});
+  }
+  const scene::Validated v = scene::validate(document, study_schema(), path);
+  if (!v.ok()) throw SceneError(v.errors);
+  const toml::table& r = v.resolved;
+  Study study;
+  study.title = r["title"].value<std::string>().value();
+  study.scene = (fs::path(path).parent_path() / r["scene"].value<std::string>().value()).lexically_normal().string();
+  std::vector<std::string> common = strings(r.get("set"));
+  common.insert(common.end(), overrides.begin(), overrides.end());
+  std::vector<Diagnostic> errors;
+
+  // The product of the axes (the first axis varies slowest).
+  std::vector<SweepRun> product;
+  if (const auto* axes = r["axis"].as_array(); axes && !axes->empty()) {
+    product.push_back(SweepRun{});
+    for (std::size_t a = 0; a < axes->size(); ++a) {
+      const toml::table& axis = *axes->get(a)->as_table();
+      const std::string axis_name = axis["name"].value<std::string>().value();
+      std::vector<SweepRun> next;
+      for (const auto& partial : product) {
+        const toml::array& levels = *axis["level"].as_array();
+        for (std::size_t l = 0; l < levels.size(); ++l) {
+          const toml::table& level = *levels.get(l)->as_table();
+          const std::string label = level["label"].value<std::string>().value();
+          if (!valid_name(label))
+            errors.push_back(v.at(fmt::format("axis.{}.level.{}.label", axis_name, l),
+                                  "a label is part of a directory name: letters, digits, '_', '-', '.'"));
+          SweepRun run = partial;
+          run.name += (run.name.empty() ? "" : "_") + label;
+          run.labels.emplace_back(axis_name, label);
+          for (const auto& s : strings(level.get("set"))) run.overrides.push_back(s);
+          next.push_back(std::move(run));
+        }
+      }
+      product = std::move(next);
+    }
+  }
+  for (auto& run : product) study.runs.push_back(std::move(run));
+  if (const auto* runs = r["run"].as_array())
+    for (std::size_t k = 0; k < runs->size(); ++k) {
+      const toml::table& t = *runs->get(k)->as_table();
+      SweepRun run;
+      run.name = t["name"].value<std::string>().value();
+      if (!valid_name(run.name))
+        errors.push_back(v.at(fmt::format("run.{}.name", run.name), "a run name is a directory name: letters, digits, '_', '-', '.'"));
+      run.overrides = strings(t.get("set"));
+      study.runs.push_back(std::move(run));
+    }
+  if (study.runs.empty()) errors.push_back(v.at("run", "a study needs at least one [[axis]] or [[run]]"));
+  std::set<std::string> seen;
+  for (auto& run : study.runs) {
+    if (!seen.insert(run.name).second) errors.push_back(v.at("run", fmt::format("two runs are named '{}'", run.name)));
+    std::vector<std::string> all = common;
+    all.insert(all.end(), run.overrides.begin(), run.overrides.end());
+    run.overrides = std::move(all);
+  }
+  if (!errors.empty()) throw SceneError(errors);
+  return study;
+}
+
+int run_sweep(const SweepOptions& o) {
+  Study study = load_study(o.study, o.overrides);
+  if (!o.only.empty()) {
+    std::vector<SweepRun> kept;
+    for (const auto& name : o.only) {
+      const auto it = std::find_if(study.runs.begin(), study.runs.end(), [&](const auto& r) { return r.name == name; });
+      if (it == study.runs.end()) {
+        std::string names;
+        for (const auto& r : study.runs) names += (names.empty() ? "" : ", ") + r.name;
+        fmt::print(stderr, "hvi sweep: {} has no run '{}' (runs: {})\n", o.study, name, names);
+        return input_error;
+      }
+      kept.push_back(*it);
+    }
+    study.runs = std::move(kept);
+  }
+  // Every run's scene is checked before anything runs, so a typo in the last level does not
+  // surface hours into the study.
+  for (const auto& run : study.runs) {
+    try {
+      scene::load_scene(study.scene, run.overrides);
+    } catch (const SceneError& e) {
+      for (const auto& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.text());
+      fmt::print(stderr, "hvi sweep: run '{}' of {} has an invalid scene; nothing was run\n", run.name, o.study);
+      return input_error;
+    }
+  }
+  fmt::print("hvi sweep: {}{} — {} runs of {}\n", o.study, study.title.empty() ? "" : " (" + study.title + ")",
+             study.runs.size(), study.scene);
+  if (o.list) {
+    for (const auto& run : study.runs) fmt::print("  {}: {}\n", run.name, fmt::join(run.overrides, " "));
+    return success;
+  }
+  fs::create_directories(o.out);
+  std::map<std::string, std::string> status_of;
+  int code = success;
+  for (std::size_t k = 0; k < study.runs.size(); ++k) {
+    const SweepRun& run = study.runs[k];
+    const fs::path dir = fs::path(o.out) / run.name;
+    RunSummary summary = read_run_summary(dir);
+    if (summary.finished()) {
+      fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name, summary.wall_seconds);
+    } else {
+      std::vector<std::string> args;
+      const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
+      if (resume) {
+        args = {"run", "--resume", dir.string()};
+      } else {
+        args = {"run", study.scene, "--out", dir.string(), "--overwrite"};
+        for (const auto& s : run.overrides) args.insert(args.end(), {"--set", s});
+      }
+      if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
+      fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name, resume ? "resuming" : "running");
+      std::fflush(stdout);
+      const auto start = std::chrono::steady_clock::now();
+      const int status = run_child(o.hvi, args, fs::path(o.out) / (run.name + ".log"));
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      summary = read_run_summary(dir);
+      if (status == interrupted) {
+        fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n", run.name);
+        write_table(study, o.out, status_of);
+        return interrupted;
+      }
+      if (status != success || !summary.finished()) {
+        status_of[run.name] = "failed";
+        code = run_failed;
+        fmt::print("    failed after {:.1f} s (exit {}); see {}\n", wall, status, (fs::path(o.out) / (run.name + ".log")).string());
+      } else {
+        fmt::print("    finished in {:.1f} s\n", wall);
+      }
+    }
+    if (summary.finished() && !fs::exists(dir / "measurements.csv")) {
+      const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");
+      if (status != success) fmt::print("    not measured (see {})\n", (dir / "measure.log").string());
+    }
+    write_table(study, o.out, status_of);  // after every run: the table is current even if stopped
+  }
+  fmt::print("hvi sweep: {} (one row per run); hvi fit {} --form front|rear|taper; hvi report {}\n",
+             (fs::path(o.out) / "sweep.csv").string(), o.out, o.out);
+  return code;
+}
+
+}  // namespace hvi::driver

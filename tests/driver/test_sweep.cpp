@@ -1,0 +1,129 @@
+// hvi sweep end to end: a study file expands to the product of its axes plus its listed runs,
+// every run lands in sweep.csv with its measures, a second call skips what is done, and a bad
+// level stops the sweep before anything runs.
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cases/driver/scene.hpp"
+#include "cases/driver/sweep_command.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string hvi = HVI_BINARY;
+const std::string data = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/";
+
+int run(const std::string& args, const fs::path& log) {
+  const std::string cmd = hvi + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string read(const fs::path& p) {
+  std::stringstream s;
+  s << std::ifstream(p).rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream s(line);
+  std::string cell;
+  while (std::getline(s, cell, ',')) out.push_back(cell);
+  return out;
+}
+
+// sweep.csv as run name -> column -> cell.
+std::map<std::string, std::map<std::string, std::string>> table(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  const auto header = split(line);
+  std::map<std::string, std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) rows[cells[0]][header[k]] = cells[k];
+  }
+  return rows;
+}
+
+TEST(Sweep, StudyExpandsToTheProductOfItsAxesAndItsRuns) {
+  const hvi::driver::Study s = hvi::driver::load_study(data + "drift_study.toml", {"grid.cell_size=1 mm"});
+  ASSERT_EQ(s.runs.size(), 5u);
+  EXPECT_EQ(s.runs[0].name, "v100_r1");  // the first axis varies slowest
+  EXPECT_EQ(s.runs[1].name, "v100_r15");
+  EXPECT_EQ(s.runs[3].name, "v200_r15");
+  EXPECT_EQ(s.runs[4].name, "still");
+  // The study's overrides, the command line's, then the level's (the later one wins).
+  const std::vector<std::string> expected{"run.end_time=2 us", "grid.cell_size=1 mm", "body.ball.velocity=[200, 0, 0]",
+                                          "body.ball.sphere.radius=1.5 mm"};
+  EXPECT_EQ(s.runs[3].overrides, expected);
+  EXPECT_EQ(s.runs[3].labels.size(), 2u);
+  EXPECT_EQ(s.runs[3].labels[1].first, "size");
+  EXPECT_EQ(s.runs[3].labels[1].second, "r15");
+}
+
+TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
+  const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep";
+  fs::remove_all(out);
+  const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep.log";
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --threads 2", log), 0) << read(log);
+  auto rows = table(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows["v200_r15"]["speed"], "v200");
+  EXPECT_EQ(rows["v200_r15"]["size"], "r15");
+  for (const auto& [name, row] : rows) EXPECT_EQ(row.at("status"), "finished") << name;
+  // A free elastic sphere translates rigidly: its front advances by v t, so the 200 m/s runs lead
+  // the 100 m/s ones by 100 m/s x 2 us = 0.2 mm, and the still one stays where it started.
+  auto front = [&](const std::string& run) { return std::stod(rows[run]["front"]); };
+  EXPECT_NEAR(front("v200_r1") - front("v100_r1"), 0.2e-3, 1e-12);
+  EXPECT_NEAR(front("v200_r15") - front("v100_r15"), 0.2e-3, 1e-12);
+  EXPECT_NEAR(front("v100_r1") - front("still"), 0.2e-3, 1e-12);
+  EXPECT_GT(front("v100_r15"), front("v100_r1"));  // the larger sphere reaches further
+
+  // Done runs are not run again: their rows (wall times included) are unchanged.
+  const std::string before = read(out / "sweep.csv");
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string(), log), 0) << read(log);
+  EXPECT_NE(read(log).find("v200_r15: done"), std::string::npos) << read(log);
+  EXPECT_EQ(read(out / "sweep.csv"), before);
+}
+
+TEST(Sweep, ABadLevelStopsTheSweepBeforeAnythingRuns) {
+  const fs::path dir = fs::path(testing::TempDir()) / "hvi_sweep_bad";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(data + "drift.toml", dir / "drift.toml");
+  std::string study = read(data + "drift_study.toml");
+  study.replace(study.find("radius=1.5 mm"), 13, "radius=1.5 kg");
+  std::ofstream(dir / "study.toml") << study;
+  const fs::path out = dir / "out";
+  const fs::path log = dir / "log.txt";
+  EXPECT_EQ(run("sweep " + (dir / "study.toml").string() + " --out " + out.string(), log), 2);
+  EXPECT_NE(read(log).find("body.ball.sphere.radius"), std::string::npos) << read(log);
+  EXPECT_NE(read(log).find("v100_r15"), std::string::npos) << read(log);  // the first run it is in
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Sweep, StudyFileErrorsNameTheLine) {
+  const fs::path file = fs::path(testing::TempDir()) / "hvi_bad_study.toml";
+  std::ofstream(file) << "scene = \"drift.toml\"\n[[run]]\nname = \"a\"\nsett = [\"x=1\"]\n";
+  try {
+    hvi::driver::load_study(file.string());
+    FAIL() << "accepted";
+  } catch (const hvi::scene::SceneError& e) {
+    const auto& d = e.diagnostics().front();
+    EXPECT_EQ(d.line, 4);
+    EXPECT_NE(d.text().find("did you mean"), std::string::npos) << d.text();
+  }
+}
+
+}  // namespace
