@@ -38,7 +38,7 @@ std::int64_t pack(std::int64_t i, std::int64_t j, std::int64_t k) {
 
 }  // namespace
 
-std::vector<std::size_t> largest_cluster(const ParticleSet& set,
+std::vector<std::size_t> attached_clusters(const ParticleSet& set,
                                          std::span<const std::size_t> particles, double link_factor,
                                          double fallback_spacing) {
   const std::size_t n = particles.size();
@@ -80,15 +80,11 @@ std::vector<std::size_t> largest_cluster(const ParticleSet& set,
           }
         }
   }
-  std::size_t best = sets.find(0);
-  for (std::size_t a = 1; a < n; ++a) {
-    const std::size_t root = sets.find(a);
-    if (sets.size[root] > sets.size[best]) best = root;
-  }
+  std::size_t largest = 0;
+  for (std::size_t a = 0; a < n; ++a) largest = std::max(largest, sets.size[sets.find(a)]);
   std::vector<std::size_t> out;
-  out.reserve(sets.size[best]);
   for (std::size_t a = 0; a < n; ++a)
-    if (sets.find(a) == best) out.push_back(particles[a]);
+    if (2 * sets.size[sets.find(a)] >= largest) out.push_back(particles[a]);
   return out;
 }
 

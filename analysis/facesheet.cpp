@@ -10,7 +10,7 @@ FacesheetResult measure_facesheet(const ParticleSet& set, std::int64_t body,
   const std::vector<std::size_t> intact = particles_of(set, body, true);
   out.intact = intact.size();
   out.attached = options.link_factor > 0
-                     ? largest_cluster(set, intact, options.link_factor, options.view.spacing)
+                     ? attached_clusters(set, intact, options.link_factor, options.view.spacing)
                      : intact;
   out.detached = out.intact - out.attached.size();
   const auto [x0, y0] = options.axis;
@@ -20,7 +20,9 @@ FacesheetResult measure_facesheet(const ParticleSet& set, std::int64_t body,
     out.hole.rotation = options.rotation;
     return out;
   }
-  out.raster = top_view(set, out.attached, options.view);
+  TopViewOptions view = options.view;
+  view.include = options.axis;
+  out.raster = top_view(set, out.attached, view);
   out.region = find_hole(out.raster, x0, y0);
   out.hole = measure_hole(out.raster, out.region, x0, y0, options.rule, options.rotation);
   return out;

@@ -82,6 +82,11 @@ Raster top_view(const ParticleSet& set, std::span<const std::size_t> particles,
       hi[d] = std::max(hi[d], set.position[3 * p + d] + a[d]);
     }
   }
+  if (options.include)
+    for (int d = 0; d < 2; ++d) {
+      lo[d] = std::min(lo[d], (*options.include)[d]);
+      hi[d] = std::max(hi[d], (*options.include)[d]);
+    }
   Raster r;
   r.cell = options.resolution > 0 ? options.resolution : finest / 4;
   const double closing = options.gap_closing * finest;

@@ -40,6 +40,9 @@ struct TopViewOptions {
   // (a gap of h). The closing also rounds the hole's convex corners, moving a corner of angle
   // 90 deg by at most (sqrt(2) - 1) x the radius. 0: no closing.
   double gap_closing = 0.375;
+  // A point the raster must cover (the impact axis), so that a hole wider than what is left of
+  // the sheet still starts on the raster and measures as open (its sizes lower bounds).
+  std::optional<std::array<double, 2>> include;
 };
 
 // Footprint half-widths (x, y) of particle p, m.

@@ -9,9 +9,11 @@
 //   hvi measure RUN_DIR [--snapshot N|last] [--axis x0,y0] [--resolution R]...
 //                                                  hole sizes, bulge, debris (measurements.json)
 //   hvi fit CSV_OR_DIR --form front|rear|taper     the dimensional-analysis power laws
+//   hvi report DIR                                 Markdown report with figures (scripts/report.py)
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
 //                                                  a grid of runs, resumable; DIR/sweep.csv
 #include <omp.h>
+#include <sys/wait.h>
 
 #include <filesystem>
 #include <iostream>
@@ -65,6 +67,16 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
   fmt::print("  {} particles, {:.6g} kg; first time step {:.4g} s, about {:.0f} steps to t = {:.4g} s\n",
              solver->particles().size(), mass, dt, scene.end_time / dt, scene.end_time);
   return ExitCode::success;
+}
+
+// hvi report: scripts/report.py (matplotlib, h5py) with the paper's reference tables of the source tree.
+int report(const std::string& dir, bool no_run_figures) {
+  const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string source = HVI_SOURCE_DIR;
+  std::string cmd = python + " '" + source + "/scripts/report.py' '" + dir + "' --reference '" + source + "/cases/paper/reference'";
+  if (no_run_figures) cmd += " --no-run-figures";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ExitCode::success : ExitCode::input_error;
 }
 
 }  // namespace
@@ -123,6 +135,13 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--only", sweep.only, "Run only these runs (names)");
   sweep_cmd->add_flag("--list", sweep.list, "Print the runs with their overrides and exit");
 
+  std::string report_dir;
+  bool report_no_run_figures = false;
+  auto* report_cmd = app.add_subcommand(
+      "report", "A Markdown report with figures of a study (hvi sweep) or a measured run: tables against the paper's Tables 2 and 5");
+  report_cmd->add_option("dir", report_dir, "Study directory (sweep.csv) or run directory (measurements.csv)")->required();
+  report_cmd->add_flag("--no-run-figures", report_no_run_figures, "Skip the per-run top views (quicker for large runs)");
+
   const auto measure = hvi::driver::add_measure_command(app);
   const auto fit = hvi::driver::add_fit_command(app);
 
@@ -148,6 +167,7 @@ int main(int argc, char** argv) {
       convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
       return hvi::driver::run_convergence(convergence);
     }
+    if (*report_cmd) return report(report_dir, report_no_run_figures);
     if (*sweep_cmd) {
       sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
       return hvi::driver::run_sweep(sweep);

@@ -98,12 +98,20 @@ void write_text(const fs::path& path, const std::string& text) {
   out << text;
 }
 
-void write_run_info(const fs::path& dir, const RunOptions& options, int threads) {
+// run.json: what made the run, and the names behind the snapshots' integer `body` and `material`
+// fields (index k is bodies[k], materials[k]).
+void write_run_info(const fs::path& dir, const RunOptions& options, int threads, const scene::Scene& scene,
+                    const std::vector<std::string>& body_names) {
+  toml::array bodies, materials;
+  for (const auto& b : body_names) bodies.push_back(b);
+  for (const auto& m : scene.materials) materials.push_back(m.name);
   toml::table info{{"hvi_version", "0.1.0"},
                    {"git_revision", hvi::git_revision},
                    {"command", options.command_line},
                    {"threads", threads},
-                   {"resumed", options.resume}};
+                   {"resumed", options.resume},
+                   {"bodies", bodies},
+                   {"materials", materials}};
   std::ofstream out(dir / (options.resume ? "run.resumed.json" : "run.json"));
   out << toml::json_formatter(info) << '\n';
 }
@@ -162,13 +170,14 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
 
   if (options.overwrite && !options.resume) {
     for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
-                          "run.resumed.json", "failure.h5"})
+                          "run.resumed.json", "failure.h5",
+                          "measurements.json", "measurements.csv", "measure.log", "top_view_front.pgm", "top_view_rear.pgm"})
       fs::remove(dir / f);
     fs::remove_all(dir / "snapshots");
   }
   fs::create_directories(dir);
   write_text(dir / "scene.resolved.toml", scene::resolved_text(scene));
-  write_run_info(dir, options, threads);
+  write_run_info(dir, options, threads, scene, solver->body_names());
 
   mpm::Solver& s = *solver;
   mpm::PhaseTimer& timer = s.timer();

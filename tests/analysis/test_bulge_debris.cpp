@@ -22,7 +22,7 @@ constexpr double h = 0.1 * mm;
 // is A exp(-r_min^2 / w^2), r_min the distance of the nearest lattice column to the axis
 // (h / sqrt(2)). The current set is shuffled: the match is by id, not by position in the arrays.
 // A failed particle thrown far (5 mm) is left out with the other failed ones, and an intact chip
-// 3 mm behind the sheet is left out as detached (largest_cluster).
+// 3 mm behind the sheet is left out as detached (attached_clusters).
 TEST(Bulge, GaussianBumpMatchedById) {
   const double A = 0.3 * mm, w = 1 * mm;
   const ParticleData initial = test::plate(2 * mm, h, 2, {}, false, 0, -10 * mm);
@@ -49,7 +49,7 @@ TEST(Bulge, GaussianBumpMatchedById) {
     shuffled.spacing.push_back(h);
   }
   const auto intact = particles_of(shuffled.view(), 0, true);
-  const auto attached = largest_cluster(shuffled.view(), intact, 1.75, 0);
+  const auto attached = attached_clusters(shuffled.view(), intact, 1.75, 0);
   EXPECT_EQ(attached.size(), current.size() - 2);
   const Bulge b = rear_bulge(initial.view(), shuffled.view(), attached, {0, 0, -1});
   const double expected = A * std::exp(-(h * h / 2) / (w * w));

@@ -1,0 +1,330 @@
+#!/usr/bin/env python3
+"""The report of a study (hvi report DIR): a Markdown file with PNG figures, from DIR/sweep.csv (hvi
+sweep) and each run's snapshots and measurements.
+
+  report.py DIR [--reference REF_DIR]
+
+Figures: top views of both facesheets of each run (intact material; paper Fig. 13), the core's
+damage in the symmetry plane (Fig. 11), D_f and D_r against impact energy (Fig. 15), the channel
+taper against impact energy (Fig. 16). Tables: every run; against Table 2 (Turner's experiments and
+the paper's MPM) for runs named case1..case7; against Table 5 (the paper's D_f) for runs named
+m<mass>g_v<speed>. REF_DIR holds turner_validation.csv and front_holes.csv
+(cases/paper/reference).
+"""
+import argparse
+import csv
+import json
+import math
+import pathlib
+import re
+import sys
+import tomllib
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+MM = 1e-3
+
+
+def number(text):
+    try:
+        v = float(text)
+        return v if math.isfinite(v) else None
+    except (TypeError, ValueError):
+        return None
+
+
+def csv_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def load_runs(out):
+    """One dict per run: the sweep.csv row, or a single run directory's measurements."""
+    sweep = out / "sweep.csv"
+    if sweep.exists():
+        rows = csv_rows(sweep)
+        for r in rows:
+            r["dir"] = out / r["run"]
+        return rows
+    if (out / "measurements.csv").exists():  # a single run
+        row = csv_rows(out / "measurements.csv")[0]
+        row["dir"] = out
+        summary = json.loads((out / "summary.json").read_text()) if (out / "summary.json").exists() else {}
+        row["status"] = summary.get("status", "")
+        row["wall_seconds"] = str(summary.get("wall_seconds", ""))
+        row["particles"] = str(summary.get("particles", ""))
+        row["energy_balance"] = str(summary.get("energy_balance", ""))
+        return [row]
+    sys.exit(f"report.py: {out} has neither sweep.csv (hvi sweep) nor measurements.csv (hvi measure)")
+
+
+def projectile_mass(run_dir, d_p):
+    """m_p = rho pi d^3 / 6 with the density of the projectile's material in the resolved scene."""
+    scene = tomllib.loads((run_dir / "scene.resolved.toml").read_text())
+    bodies = {b["name"]: b for b in scene.get("body", [])}
+    materials = {m["name"]: m for m in scene.get("material", [])}
+    if "projectile" not in bodies:
+        return None
+    rho = materials[bodies["projectile"]["material"]].get("density")
+    return rho * math.pi * d_p**3 / 6 if rho else None
+
+
+def last_snapshot(run_dir):
+    files = sorted((run_dir / "snapshots").glob("particles_*.h5"))
+    return files[-1] if files else None
+
+
+def mirrored(x, y, planes):
+    """The points and their images across the run's symmetry planes (measurements.json)."""
+    xs, ys = [x], [y]
+    if "x" in planes:
+        xs, ys = xs + [2 * planes["x"] - a for a in xs], ys + ys
+    if "y" in planes:
+        xs, ys = xs + xs, ys + [2 * planes["y"] - b for b in ys]
+    return np.concatenate(xs), np.concatenate(ys)
+
+
+def figure_run(run, figures):
+    """Top views of the facesheets and the core's damage in the symmetry plane, for one run."""
+    d = run["dir"]
+    snap = last_snapshot(d)
+    info_file = d / "run.json"
+    if snap is None or not info_file.exists():
+        return None
+    bodies = json.loads(info_file.read_text()).get("bodies", [])
+    meas = json.loads((d / "measurements.json").read_text()) if (d / "measurements.json").exists() else {}
+    planes = meas.get("mirror_planes", {})
+    with h5py.File(snap, "r") as f:
+        pos = f["position"][()]
+        body = f["body"][()]
+        failed = f["failed"][()] if "failed" in f else np.zeros(len(body), dtype=np.int8)
+        damage = f["damage"][()] if "damage" in f else failed.astype(float)
+        volume = f["volume"][()]
+    index = {name: k for k, name in enumerate(bodies)}
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.6))
+    for ax, part in zip(axes[:2], ("front", "rear")):
+        name = meas.get(part, {}).get("body", f"panel.{part}")
+        if name not in index:
+            ax.set_visible(False)
+            continue
+        keep = (body == index[name]) & (failed == 0)
+        x, y = mirrored(pos[keep, 0] / MM, pos[keep, 1] / MM, planes)
+        ax.scatter(x, y, s=0.2, c="0.25", linewidths=0, rasterized=True)
+        hole = meas.get(part, {})
+        title = f"{part} facesheet (intact)"
+        if hole.get("perforated"):
+            title += f": D = {hole.get('D', 0) / MM:.2f} mm, e = {hole.get('eccentricity', 0):.3f}"
+        elif part in meas:
+            title += ": not perforated"
+        ax.set_title(title, fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
+    ax = axes[2]
+    if "panel.core" in index:
+        cell = np.cbrt(np.median(volume))
+        sym = planes.get("y", 0.0)
+        keep = (body == index["panel.core"]) & (np.abs(pos[:, 1] - sym) < 1.5 * cell)
+        sc = ax.scatter(pos[keep, 0] / MM, pos[keep, 2] / MM, s=0.5, c=np.clip(damage[keep], 0, 1), cmap="gray_r",
+                        vmin=0, vmax=1, linewidths=0, rasterized=True)
+        fig.colorbar(sc, ax=ax, label="damage (1: failed)")
+        ax.set_title("core walls near the symmetry plane", fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("z (mm)")
+    else:
+        ax.set_visible(False)
+    fig.suptitle(f"{run['run']} at t = {meas.get('time', 0) * 1e6:.2f} us", fontsize=10)
+    fig.tight_layout()
+    png = figures / f"{run['run']}.png"
+    fig.savefig(png, dpi=90)
+    plt.close(fig)
+    return png
+
+
+def fmt_mm(v):
+    return f"{v / MM:.2f}" if v is not None else "—"
+
+
+def perforated(run, which):
+    text = run.get(f"{which}_perforated", "")
+    return None if text == "" else text.lower() in ("true", "1", "1.0")
+
+
+def runs_table(runs):
+    lines = ["| run | status | particles | wall (s) | front | D_f (mm) | e_f | rear | D_r (mm) | e_r | taper | energy |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in runs:
+        def cell(which):
+            p = perforated(r, which)
+            return "—" if p is None else ("perforated" if p else "NP")
+        eb = number(r.get("energy_balance"))
+        wall = number(r.get("wall_seconds"))
+        lines.append("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+            r["run"], r.get("status", ""), r.get("particles", ""), f"{wall:.0f}" if wall is not None else "—",
+            cell("front"), fmt_mm(number(r.get("D_f"))), r.get("e_f") or "—", cell("rear"), fmt_mm(number(r.get("D_r"))),
+            r.get("e_r") or "—", f"{number(r.get('taper')):.3f}" if number(r.get("taper")) is not None else "—",
+            f"{100 * eb:+.2f}%" if eb is not None else "—"))
+    return "\n".join(lines)
+
+
+def table2(runs, ref_dir):
+    """Against Table 2: perforation of the rear sheet and D_r, for runs named case1..case7."""
+    by_case = {int(m.group(1)): r for r in runs if (m := re.fullmatch(r"case(\d+)", r["run"]))}
+    if not by_case:
+        return None
+    ref = {int(row["case"]): row for row in csv_rows(ref_dir / "turner_validation.csv")}
+    lines = ["| case | Turner | d_p (mm) | v_p (m/s) | D_r exp. (mm) | D_r paper MPM (mm) | D_r hvi (mm) | hvi vs exp. | outcome |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    correct, errors, paper_errors, done = 0, [], [], 0
+    for case in sorted(ref):
+        row, r = ref[case], by_case.get(case)
+        exp_np = row["D_r_exp_mm"] == "NP"
+        hvi_p = perforated(r, "rear") if r and r.get("status") == "finished" else None
+        d_hvi = number(r.get("D_r")) if r else None
+        cells = [str(case), row["ref_case"], row["d_p_mm"], row["v_p_m_s"], row["D_r_exp_mm"], row["D_r_paper_mpm_mm"]]
+        if hvi_p is None:
+            cells += ["not run", "—", "—"]
+        else:
+            done += 1
+            match = hvi_p == (not exp_np)
+            correct += match
+            cells.append(f"{d_hvi / MM:.2f}" if hvi_p and d_hvi else "NP")
+            if hvi_p and not exp_np and d_hvi:
+                err = d_hvi / MM / float(row["D_r_exp_mm"]) - 1
+                errors.append(abs(err))
+                cells.append(f"{100 * err:+.0f}%")
+            else:
+                cells.append("—")
+            cells.append("correct" if match else "wrong")
+        if row["D_r_paper_mpm_mm"] != "NP" and not exp_np:
+            paper_errors.append(abs(float(row["D_r_paper_mpm_mm"]) / float(row["D_r_exp_mm"]) - 1))
+        lines.append("| " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append(f"Perforation of the rear sheet classified correctly: **{correct} of {done}** runs "
+                 f"(the paper: 5 of 7). Mean |D_r error| against experiment over the shots both perforated: "
+                 + (f"**{100 * np.mean(errors):.0f}%** ({len(errors)} shots)" if errors else "—")
+                 + f" (the paper: {100 * np.mean(paper_errors):.0f}% over {len(paper_errors)}).")
+    return "\n".join(lines)
+
+
+def table5(runs, ref_dir):
+    """Against Table 5: D_f for runs named m<mass>g_v<speed>."""
+    found = {}
+    for r in runs:
+        m = re.fullmatch(r"m(\d+)g_v(\d+)", r["run"])
+        if m and number(r.get("D_f")) is not None:
+            found[(int(m.group(1)), int(m.group(2)))] = number(r["D_f"]) / MM
+    if not found:
+        return None
+    ref = csv_rows(ref_dir / "front_holes.csv")
+    speeds = [int(k[1:]) for k in ref[0] if k.startswith("v")]
+    lines = ["| m_p (g) | " + " | ".join(f"{v} m/s: paper / hvi" for v in speeds) + " |",
+             "|---|" + "---|" * len(speeds)]
+    within, count, errs = 0, 0, []
+    for row in ref:
+        mass = int(row["m_p_g"])
+        cells = [str(mass)]
+        for v in speeds:
+            paper = float(row[f"v{v}"])
+            hvi = found.get((mass, v))
+            if hvi is None:
+                cells.append(f"{paper:.2f} / —")
+                continue
+            err = hvi / paper - 1
+            errs.append(err)
+            count += 1
+            within += abs(err) <= 0.05
+            cells.append(f"{paper:.2f} / {hvi:.2f} ({100 * err:+.0f}%)")
+        lines.append("| " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append(f"D_f within 5% of the paper's: **{within} of {count}** runs; mean error {100 * np.mean(errs):+.1f}%, "
+                 f"mean |error| {100 * np.mean(np.abs(errs)):.1f}%.")
+    return "\n".join(lines)
+
+
+def energy_figures(runs, figures):
+    pts = []
+    for r in runs:
+        d_p, v_p = number(r.get("d_p")), number(r.get("v_p"))
+        if d_p is None or v_p is None or r.get("status") != "finished":
+            continue
+        m = projectile_mass(r["dir"], d_p)
+        if m is None:
+            continue
+        pts.append((0.5 * m * v_p**2, d_p, number(r.get("D_f")), number(r.get("D_r")), number(r.get("taper"))))
+    if len(pts) < 2:
+        return []
+    made = []
+    sizes = sorted({p[1] for p in pts})
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, col, label in ((axes[0], 2, "D_f"), (axes[1], 3, "D_r")):
+        for d in sizes:
+            sel = sorted((p[0], p[col]) for p in pts if p[1] == d and p[col] is not None)
+            if sel:
+                ax.plot([s[0] / 1e3 for s in sel], [s[1] / MM for s in sel], "o-", label=f"d_p = {d / MM:.2f} mm")
+        ax.set_xscale("log")
+        ax.set_xlabel("impact energy (kJ)")
+        ax.set_ylabel(f"{label} (mm)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(figures / "holes_vs_energy.png", dpi=90)
+    plt.close(fig)
+    made.append(("Hole diameters against impact energy (paper Fig. 15)", "holes_vs_energy.png"))
+    if any(p[4] is not None for p in pts):
+        fig, ax = plt.subplots(figsize=(5.5, 4))
+        for d in sizes:
+            sel = sorted((p[0], p[4]) for p in pts if p[1] == d and p[4] is not None)
+            if sel:
+                ax.plot([s[0] / 1e3 for s in sel], [s[1] for s in sel], "o-", label=f"d_p = {d / MM:.2f} mm")
+        ax.set_xscale("log")
+        ax.set_xlabel("impact energy (kJ)")
+        ax.set_ylabel("taper t = (D_r - D_f) / S")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(figures / "taper_vs_energy.png", dpi=90)
+        plt.close(fig)
+        made.append(("Channel taper against impact energy (paper Fig. 16)", "taper_vs_energy.png"))
+    return made
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("dir", type=pathlib.Path)
+    parser.add_argument("--reference", type=pathlib.Path,
+                        default=pathlib.Path(__file__).resolve().parent.parent / "cases" / "paper" / "reference")
+    parser.add_argument("--no-run-figures", action="store_true", help="skip the per-run top views (large runs)")
+    args = parser.parse_args()
+    out = args.dir
+    runs = load_runs(out)
+    figures = out / "report"
+    figures.mkdir(exist_ok=True)
+    md = [f"# hvi report: {out}", "", f"{len(runs)} runs.", "", "## Runs", "", runs_table(runs), ""]
+    t2 = table2(runs, args.reference)
+    if t2:
+        md += ["## Against Table 2 (Turner's experiments, the paper's MPM)", "", t2, ""]
+    t5 = table5(runs, args.reference)
+    if t5:
+        md += ["## Against Table 5 (the paper's D_f)", "", t5, ""]
+    for title, png in energy_figures(runs, figures):
+        md += [f"## {title}", "", f"![{title}](report/{png})", ""]
+    if not args.no_run_figures:
+        md += ["## Top views and core damage (paper Figs. 11, 13)", ""]
+        for r in runs:
+            if r.get("status") == "finished":
+                png = figure_run(r, figures)
+                if png:
+                    md += [f"### {r['run']}", "", f"![{r['run']}](report/{png.name})", ""]
+    (out / "report.md").write_text("\n".join(md) + "\n")
+    print(f"report: {out / 'report.md'} (figures in {figures})")
+
+
+if __name__ == "__main__":
+    main()
