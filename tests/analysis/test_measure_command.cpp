@@ -3,6 +3,7 @@
 // hole, a rear bulge or hole, and debris of known size. Checks the reading of the scene (bodies,
 // spacings, panel, sound speeds, mirror plane), the projectile axis, the mirroring and the files.
 #include <cmath>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -229,6 +230,18 @@ TEST(MeasureCommand, PanelPerforatedRearAndTaper) {
   EXPECT_DOUBLE_EQ(*m.taper, (m.rear->hole.D - m.front->hole.D) / (5 * mm));
   // The debris excludes the rear sheet's own material; the projectile is all of it.
   EXPECT_NEAR(m.debris.axial_extent, 7.95 * mm - 5.6 * mm, 1e-12);
+
+  // What a run's summary gets from a kind = "holes" measure: the same numbers.
+  std::map<std::string, double> q;
+  for (const auto& [name, value] : headline_quantities(m)) q[name] = value;
+  EXPECT_EQ(q.at("front_perforated"), 1.0);
+  EXPECT_EQ(q.at("rear_perforated"), 1.0);
+  EXPECT_EQ(q.at("D_f"), m.front->hole.D);
+  EXPECT_EQ(q.at("D_r"), m.rear->hole.D);
+  EXPECT_EQ(q.at("e_r"), m.rear->hole.eccentricity);
+  EXPECT_EQ(q.at("taper"), *m.taper);
+  EXPECT_EQ(q.at("debris_mass"), m.debris.mass);
+  EXPECT_EQ(q.count("bulge"), 0u);  // perforated: no bulge
 
   // Without mirroring the half sheet's hole reaches the cut at y = 0: open, and the axis is the
   // half projectile's centroid (off the plane) unless given.

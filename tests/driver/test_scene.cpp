@@ -210,6 +210,14 @@ TEST(Scene, ResolutionSetsApplyTheirOverrides) {
   EXPECT_DOUBLE_EQ(mixed.grid.cell_size, 0.5e-3);  // the command line wins
 }
 
+TEST(Scene, HolesMeasureNeedsAPanelOrAPlate) {
+  const std::string holes = "\n[[measure]]\nname = \"holes\"\nkind = \"holes\"\n";
+  const Diagnostic d = error_for(valid + holes, "measure.holes");
+  EXPECT_TRUE(contains(d.message, "[[panel]]")) << d.text();
+  const Scene s = parse_scene(valid + holes + "body = \"ball\"\n", "scene.toml");  // the plate named
+  EXPECT_EQ(s.measures.at(0).body, "ball");
+}
+
 TEST(Scene, UnknownResolutionNamesTheOnesDefined) {
   const Diagnostic d = first_error(with_resolutions, {"resolution=paper"});
   EXPECT_EQ(d.key, "resolution");
