@@ -184,6 +184,11 @@ def fmt_mm(v):
     return f"{v / MM:.2f}" if v is not None else "—"
 
 
+def fmt_ratio(text):
+    v = number(text)
+    return f"{v:.3f}" if v else "—"
+
+
 def perforated(run, which):
     text = run.get(f"{which}_perforated", "")
     return None if text == "" else text.lower() in ("true", "1", "1.0")
@@ -200,8 +205,8 @@ def runs_table(runs):
         wall = number(r.get("wall_seconds"))
         lines.append("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
             r["run"], r.get("status", ""), r.get("particles", ""), f"{wall:.0f}" if wall is not None else "—",
-            cell("front"), fmt_mm(number(r.get("D_f"))), r.get("e_f") or "—", cell("rear"), fmt_mm(number(r.get("D_r"))),
-            r.get("e_r") or "—", f"{number(r.get('taper')):.3f}" if number(r.get("taper")) is not None else "—",
+            cell("front"), fmt_mm(number(r.get("D_f"))), fmt_ratio(r.get("e_f")), cell("rear"), fmt_mm(number(r.get("D_r"))),
+            fmt_ratio(r.get("e_r")), f"{number(r.get('taper')):.3f}" if number(r.get("taper")) is not None else "—",
             f"{100 * eb:+.2f}%" if eb is not None else "—"))
     return "\n".join(lines)
 

@@ -26,7 +26,9 @@ fs::path scratch(const std::string& name) {
 
 // Runs hvi with `args`; returns its exit code, stderr in `err`.
 int run(const std::string& args, std::string* err = nullptr) {
-  const fs::path log = fs::path(testing::TempDir()) / "hvi_cli_stderr.txt";
+  // One file per test: ctest runs the tests of this file in parallel.
+  const fs::path log = fs::path(testing::TempDir()) /
+                       ("hvi_cli_stderr_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt");
   const std::string cmd = hvi + " " + args + " > /dev/null 2> " + log.string();
   const int status = std::system(cmd.c_str());
   if (err) {

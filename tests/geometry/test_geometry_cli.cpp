@@ -22,8 +22,10 @@ const std::string hvi = HVI_BINARY;
 const std::string source = HVI_SOURCE_DIR;
 
 int run(const std::string& args, std::string* out = nullptr, std::string* err = nullptr) {
-  const fs::path o = fs::path(testing::TempDir()) / "hvi_geometry_stdout.txt";
-  const fs::path e = fs::path(testing::TempDir()) / "hvi_geometry_stderr.txt";
+  // Files of this test alone: ctest runs the tests of this file in parallel.
+  const std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path o = fs::path(testing::TempDir()) / ("hvi_geometry_stdout_" + test + ".txt");
+  const fs::path e = fs::path(testing::TempDir()) / ("hvi_geometry_stderr_" + test + ".txt");
   const int status =
       std::system((hvi + " " + args + " > " + o.string() + " 2> " + e.string()).c_str());
   auto read = [](const fs::path& p) {
