@@ -302,38 +302,35 @@ def energy_figures(runs, figures):
         pts.append((0.5 * m * v_p**2, d_p, number(r.get("D_f")), number(r.get("D_r")), number(r.get("taper"))))
     if len(pts) < 2:
         return []
-    made = []
     sizes = sorted({p[1] for p in pts})
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, col, label in ((axes[0], 2, "D_f"), (axes[1], 3, "D_r")):
+
+    def against_energy(ax, column, scale, ylabel):
+        """One line per projectile size: column `column` of pts (divided by `scale`) against energy."""
         for d in sizes:
-            sel = sorted((p[0], p[col]) for p in pts if p[1] == d and p[col] is not None)
+            sel = sorted((p[0], p[column]) for p in pts if p[1] == d and p[column] is not None)
             if sel:
-                ax.plot([s[0] / 1e3 for s in sel], [s[1] / MM for s in sel], "o-", label=f"d_p = {d / MM:.2f} mm")
+                ax.plot([e / 1e3 for e, _ in sel], [v / scale for _, v in sel], "o-", label=f"d_p = {d / MM:.2f} mm")
         ax.set_xscale("log")
         ax.set_xlabel("impact energy (kJ)")
-        ax.set_ylabel(f"{label} (mm)")
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0].legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(figures / "holes_vs_energy.png", dpi=90)
-    plt.close(fig)
-    made.append(("Hole diameters against impact energy (paper Fig. 15)", "holes_vs_energy.png"))
-    if any(p[4] is not None for p in pts):
-        fig, ax = plt.subplots(figsize=(5.5, 4))
-        for d in sizes:
-            sel = sorted((p[0], p[4]) for p in pts if p[1] == d and p[4] is not None)
-            if sel:
-                ax.plot([s[0] / 1e3 for s in sel], [s[1] for s in sel], "o-", label=f"d_p = {d / MM:.2f} mm")
-        ax.set_xscale("log")
-        ax.set_xlabel("impact energy (kJ)")
-        ax.set_ylabel("taper t = (D_r - D_f) / S")
+        ax.set_ylabel(ylabel)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
+
+    def save(fig, png, title):
         fig.tight_layout()
-        fig.savefig(figures / "taper_vs_energy.png", dpi=90)
+        fig.savefig(figures / png, dpi=90)
         plt.close(fig)
-        made.append(("Channel taper against impact energy (paper Fig. 16)", "taper_vs_energy.png"))
+        made.append((title, png))
+
+    made = []
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    against_energy(axes[0], 2, MM, "D_f (mm)")
+    against_energy(axes[1], 3, MM, "D_r (mm)")
+    save(fig, "holes_vs_energy.png", "Hole diameters against impact energy (paper Fig. 15)")
+    if any(p[4] is not None for p in pts):
+        fig, ax = plt.subplots(figsize=(5.5, 4))
+        against_energy(ax, 4, 1.0, "taper t = (D_r - D_f) / S")
+        save(fig, "taper_vs_energy.png", "Channel taper against impact energy (paper Fig. 16)")
     return made
 
 

@@ -9,9 +9,7 @@
 
 namespace hvi::driver {
 
-namespace {
-// Single quotes for the shell; a quote inside becomes '\''.
-std::string quote(const std::string& s) {
+std::string shell_quote(const std::string& s) {
   std::string out(1, '\'');
   for (const char c : s) {
     if (c == '\'') {
@@ -23,16 +21,15 @@ std::string quote(const std::string& s) {
   out.push_back('\'');
   return out;
 }
-}  // namespace
 
 int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log) {
-  std::string command = quote(hvi);
+  std::string command = shell_quote(hvi);
   for (const auto& a : args) {
     command.push_back(' ');
-    command.append(quote(a));
+    command.append(shell_quote(a));
   }
   command.append(" > ");
-  command.append(quote(log.string()));
+  command.append(shell_quote(log.string()));
   command.append(" 2>&1");
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;

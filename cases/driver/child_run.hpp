@@ -13,6 +13,9 @@ namespace hvi::driver {
 // exit normally).
 int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log);
 
+// `s` in single quotes for the shell (a quote inside becomes '\'').
+std::string shell_quote(const std::string& s);
+
 // What a finished run's summary.toml says.
 struct RunSummary {
   std::string status;  // finished, stopped, interrupted; empty: no summary

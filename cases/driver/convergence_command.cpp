@@ -31,8 +31,6 @@ struct Level {
   std::map<std::string, double> measures;
 };
 
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
 bool read_summary(const fs::path& dir, Level& level) {
   const RunSummary s = read_run_summary(dir);
   if (!s.finished()) return false;
@@ -168,8 +166,8 @@ int run_convergence(const ConvergenceOptions& o) {
   // Plots: error against wall time, one panel per quantity (matplotlib).
   // Debian's python3 (with python3-matplotlib) rather than another one earlier on the PATH.
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string plot = fmt::format("{} {} {} > /dev/null 2>&1", python, quote(std::string(HVI_SOURCE_DIR) + "/scripts/plot_convergence.py"),
-                                       quote(o.out));
+  const std::string plot = fmt::format("{} {} {} > /dev/null 2>&1", python, shell_quote(std::string(HVI_SOURCE_DIR) + "/scripts/plot_convergence.py"),
+                                       shell_quote(o.out));
   if (std::system(plot.c_str()) == 0)
     fmt::print("plots: {}\n", (fs::path(o.out) / "convergence.png").string());
   else

@@ -23,6 +23,7 @@
 
 #include "cases/driver/analysis_cli.hpp"
 #include "cases/driver/build_solver.hpp"
+#include "cases/driver/child_run.hpp"
 #include "cases/driver/convergence_command.hpp"
 #include "cases/driver/geometry_command.hpp"
 #include "cases/driver/run.hpp"
@@ -73,7 +74,9 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
 int report(const std::string& dir, bool no_run_figures) {
   const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
   const std::string source = HVI_SOURCE_DIR;
-  std::string cmd = python + " '" + source + "/scripts/report.py' '" + dir + "' --reference '" + source + "/cases/paper/reference'";
+  using hvi::driver::shell_quote;
+  std::string cmd = python + " " + shell_quote(source + "/scripts/report.py") + " " + shell_quote(dir) + " --reference " +
+                    shell_quote(source + "/cases/paper/reference");
   if (no_run_figures) cmd += " --no-run-figures";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ExitCode::success : ExitCode::input_error;

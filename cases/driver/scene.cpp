@@ -521,28 +521,35 @@ void apply_resolution(toml::table& document, const std::string& file) {
   document.erase("resolutions");
 }
 
-}  // namespace
-
-Scene parse_scene(const std::string& text, const std::string& file,
-                  const std::vector<std::string>& overrides) {
-  toml::table document = parse_document(text, file);
+Scene resolve_document(toml::table document, const std::string& file, const std::vector<std::string>& overrides) {
   apply_overrides(document, overrides);  // a --set resolution=<name> picks the set
   apply_resolution(document, file);
   apply_overrides(document, overrides);  // the command line wins over the set
   return resolve(document, file);
 }
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& file,
+                  const std::vector<std::string>& overrides) {
+  return resolve_document(parse_document(text, file), file, overrides);
+}
+
+toml::table read_document(const std::string& path, const std::string& what) {
   std::ifstream in(path);
   if (!in) {
     Diagnostic d;
     d.file = path;
-    d.message = "cannot read the scene file";
+    d.message = fmt::format("cannot read the {} file", what);
     throw SceneError({d});
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_scene(buffer.str(), path, overrides);
+  return parse_document(buffer.str(), path);
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  return resolve_document(read_document(path), path, overrides);
 }
 
 std::string resolved_text(const Scene& scene) {

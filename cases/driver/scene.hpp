@@ -145,6 +145,10 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 Scene parse_scene(const std::string& text, const std::string& file,
                   const std::vector<std::string>& overrides = {});
 
+// A TOML file of hvi's (a scene, a study) parsed; an unreadable file or a TOML syntax error is a
+// SceneError naming the file (and line and column). `what` names the kind of file in the message.
+toml::table read_document(const std::string& path, const std::string& what = "scene");
+
 // The resolved scene as TOML text (SI values), with a header naming the units.
 std::string resolved_text(const Scene& scene);
 

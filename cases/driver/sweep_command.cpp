@@ -6,7 +6,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -152,27 +151,7 @@ void write_table(const Study& study, const fs::path& out, const std::map<std::st
 }  // namespace
 
 Study load_study(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) {
-    Diagnostic d;
-    d.file = path;
-    d.message = "cannot read the study file";
-    throw SceneError({d});
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  toml::table document;
-  try {
-    document = toml::parse(buffer.str(), path);
-  } catch (const toml::parse_error& e) {
-    Diagnostic d;
-    d.file = path;
-    d.line = static_cast<int>(e.source().begin.line);
-    d.column = static_cast<int>(e.source().begin.column);
-    d.message = fmt::format("not valid TOML: {}", e.description());
-    throw SceneError({d});
-  }
-  const scene::Validated v = scene::validate(document, study_schema(), path);
+  const scene::Validated v = scene::validate(scene::read_document(path, "study"), study_schema(), path);
   if (!v.ok()) throw SceneError(v.errors);
   const toml::table& r = v.resolved;
   Study study;
