@@ -1,0 +1,436 @@
+// The far field with deal.II: mesh, DoFs numbered node-major, matrix-free stiffness, lumped mass,
+// the element bound of the stable time step, and VTU output.
+#include "fem/far_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/table.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/matrix_free/fe_evaluation.h>
+#include <deal.II/matrix_free/matrix_free.h>
+#include <deal.II/numerics/data_out.h>
+#include <Eigen/Dense>
+
+namespace hvi::fem {
+
+namespace {
+
+using namespace dealii;
+constexpr int dim = 3;
+using VA = VectorizedArray<double>;
+
+// sigma = C eps in Voigt order (xx, yy, zz, yz, xz, xy; engineering shear strains), for any number
+// type (double for the element matrices, VectorizedArray for the matrix-free kernel). C holds the
+// nine entries of an orthotropic stiffness (orthotropic.hpp).
+template <typename N>
+Tensor<2, dim, N> orthotropic_stress(const std::array<N, 9>& C, const Tensor<2, dim, N>& grad_u) {
+  const N exx = grad_u[0][0], eyy = grad_u[1][1], ezz = grad_u[2][2];
+  const N gyz = grad_u[1][2] + grad_u[2][1], gxz = grad_u[0][2] + grad_u[2][0],
+          gxy = grad_u[0][1] + grad_u[1][0];
+  Tensor<2, dim, N> s;
+  s[0][0] = C[0] * exx + C[3] * eyy + C[4] * ezz;
+  s[1][1] = C[3] * exx + C[1] * eyy + C[5] * ezz;
+  s[2][2] = C[4] * exx + C[5] * eyy + C[2] * ezz;
+  s[1][2] = s[2][1] = C[6] * gyz;
+  s[0][2] = s[2][0] = C[7] * gxz;
+  s[0][1] = s[1][0] = C[8] * gxy;
+  return s;
+}
+
+}  // namespace
+
+std::vector<double> graded_steps(double a, double b, double fine_lower, double fine_upper,
+                                 double fine, double ratio, double coarse, int keep) {
+  if (!(a <= fine_lower && fine_lower <= fine_upper && fine_upper <= b) || !(fine > 0) ||
+      !(ratio >= 1.0) || !(coarse >= fine))
+    throw std::invalid_argument("graded_steps: need a <= fine_lower <= fine_upper <= b, fine > 0, "
+                                "ratio >= 1, coarse >= fine");
+  const double n_fine = (fine_upper - fine_lower) / fine;
+  if (std::abs(n_fine - std::round(n_fine)) > 1e-9 * std::max(1.0, n_fine))
+    throw std::invalid_argument("graded_steps: the fine region is not a whole number of fine steps");
+  // Steps from the fine region outwards over a length L.
+  auto outward = [&](double L) {
+    std::vector<double> s;
+    if (L <= 1e-12 * fine) return s;
+    double sum = 0.0, next = fine;
+    while (sum + next <= L * (1 + 1e-12)) {
+      s.push_back(next);
+      sum += next;
+      if (static_cast<int>(s.size()) >= keep) next = std::min(next * ratio, coarse);
+    }
+    const double rest = L - sum;
+    if (rest > 1e-9 * fine) {
+      if (s.size() > static_cast<std::size_t>(keep) || s.empty() || rest > 0.5 * fine) {
+        // Spread the remainder over the steps beyond the kept ones (or add one step).
+        if (static_cast<int>(s.size()) > keep) {
+          double tail = 0.0;
+          for (std::size_t i = keep; i < s.size(); ++i) tail += s[i];
+          const double scale = (tail + rest) / tail;
+          for (std::size_t i = keep; i < s.size(); ++i) s[i] *= scale;
+        } else {
+          s.push_back(rest);
+        }
+      } else {
+        s.back() += rest;
+      }
+    }
+    return s;
+  };
+  std::vector<double> left = outward(fine_lower - a), right = outward(b - fine_upper);
+  std::vector<double> steps(left.rbegin(), left.rend());
+  for (long i = 0; i < std::lround(n_fine); ++i) steps.push_back(fine);
+  steps.insert(steps.end(), right.begin(), right.end());
+  return steps;
+}
+
+struct FarField::Impl {
+  LayeredMesh spec;
+  Triangulation<dim> triangulation;
+  std::unique_ptr<FESystem<dim>> fe;
+  DoFHandler<dim> dof_handler;
+  MappingQ1<dim> mapping;
+  AffineConstraints<double> no_constraints;
+  MatrixFree<dim, double> matrix_free;
+  std::vector<std::array<double, 9>> layer_stiffness;
+  std::vector<std::array<VA, 9>> batch_stiffness;  // per cell batch, lane by lane
+
+  std::vector<double> positions;  // 3 per node
+  std::vector<double> mass;       // per node
+  std::vector<int> layer;         // per node
+  std::vector<unsigned> fixed;    // per node
+  mutable Vector<double> u, v, work_in, work_out;
+  double dt_stable = 0.0;
+
+  template <int p>
+  void stiffness_kernel(const Vector<double>& src, Vector<double>& dst) const {
+    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
+    dst = 0.0;
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+      phi.reinit(cell);
+      phi.gather_evaluate(src, EvaluationFlags::gradients);
+      const auto& C = batch_stiffness[cell];
+      for (unsigned int q = 0; q < phi.n_q_points; ++q)
+        phi.submit_gradient(orthotropic_stress(C, phi.get_gradient(q)), q);
+      phi.integrate_scatter(EvaluationFlags::gradients, dst);
+    }
+  }
+
+  // M_a = sum_q rho N_a(x_q) JxW_q with Gauss-Lobatto points (quadrature 1): the row sums of the
+  // nodal-quadrature mass, which is diagonal.
+  template <int p>
+  void lumped_mass_kernel(Vector<double>& dst) const {
+    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 1);
+    dst = 0.0;
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+      phi.reinit(cell);
+      VA rho = 0.0;
+      for (unsigned int lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
+        rho[lane] = spec.layers[matrix_free.get_cell_iterator(cell, lane)->material_id()].density;
+      Tensor<1, dim, VA> value;
+      for (int d = 0; d < dim; ++d) value[d] = rho;
+      for (unsigned int q = 0; q < phi.n_q_points; ++q) phi.submit_value(value, q);
+      phi.integrate_scatter(EvaluationFlags::values, dst);
+    }
+  }
+
+  void apply(const Vector<double>& src, Vector<double>& dst) const {
+    if (spec.degree == 1)
+      stiffness_kernel<1>(src, dst);
+    else
+      stiffness_kernel<2>(src, dst);
+  }
+
+  void build_mesh();
+  void number_nodes();
+  void setup_matrix_free();
+  double element_bound_time_step() const;
+};
+
+void FarField::Impl::build_mesh() {
+  if (spec.degree != 1 && spec.degree != 2)
+    throw std::invalid_argument("far field: element degree must be 1 or 2");
+  if (spec.layers.empty() || spec.x_steps.empty() || spec.y_steps.empty())
+    throw std::invalid_argument("far field: the mesh needs layers and in-plane steps");
+  std::vector<double> z_steps;
+  std::vector<types::material_id> z_layer;
+  for (std::size_t l = 0; l < spec.layers.size(); ++l) {
+    const Layer& L = spec.layers[l];
+    if (!(L.z_upper > L.z_lower) || L.elements < 1 || !(L.density > 0))
+      throw std::invalid_argument("far field: layer '" + L.name + "' has no thickness, elements or density");
+    if (l > 0 && std::abs(L.z_lower - spec.layers[l - 1].z_upper) > 1e-12)
+      throw std::invalid_argument("far field: layer '" + L.name + "' does not start where the one below ends");
+    for (int e = 0; e < L.elements; ++e) {
+      z_steps.push_back((L.z_upper - L.z_lower) / L.elements);
+      z_layer.push_back(static_cast<types::material_id>(l));
+    }
+    layer_stiffness.push_back(stiffness(L.elasticity));
+  }
+  Table<dim, types::material_id> ids(spec.x_steps.size(), spec.y_steps.size(), z_steps.size());
+  double x = spec.lower[0];
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < spec.x_steps.size(); ++i) {
+    const double xc = x + 0.5 * spec.x_steps[i];
+    double y = spec.lower[1];
+    for (std::size_t j = 0; j < spec.y_steps.size(); ++j) {
+      const double yc = y + 0.5 * spec.y_steps[j];
+      const bool in_hole = spec.hole && xc > (*spec.hole)[0] && xc < (*spec.hole)[2] &&
+                           yc > (*spec.hole)[1] && yc < (*spec.hole)[3];
+      for (std::size_t k = 0; k < z_steps.size(); ++k) {
+        ids[i][j][k] = in_hole ? numbers::invalid_material_id : z_layer[k];
+        kept += !in_hole;
+      }
+      y += spec.y_steps[j];
+    }
+    x += spec.x_steps[i];
+  }
+  if (kept == 0) throw std::invalid_argument("far field: the hole removes every element");
+  GridGenerator::subdivided_hyper_rectangle(
+      triangulation, {spec.x_steps, spec.y_steps, z_steps},
+      Point<dim>(spec.lower[0], spec.lower[1], spec.layers.front().z_lower), ids);
+}
+
+// DoFs renumbered node-major: the three components of node a are DoFs 3a, 3a + 1, 3a + 2, nodes
+// in the order the cells first reach them.
+void FarField::Impl::number_nodes() {
+  fe = std::make_unique<FESystem<dim>>(FE_Q<dim>(spec.degree), dim);
+  dof_handler.reinit(triangulation);
+  dof_handler.distribute_dofs(*fe);
+  const auto n_dofs = dof_handler.n_dofs();
+  std::vector<types::global_dof_index> new_number(n_dofs, numbers::invalid_dof_index);
+  std::vector<types::global_dof_index> local(fe->n_dofs_per_cell());
+  types::global_dof_index nodes = 0;
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    cell->get_dof_indices(local);
+    // Scalar support point k carries components 0..2; number the node at its x DoF.
+    std::vector<types::global_dof_index> node_of_point(fe->base_element(0).n_dofs_per_cell(),
+                                                       numbers::invalid_dof_index);
+    for (unsigned i = 0; i < local.size(); ++i) {
+      const auto [comp, k] = fe->system_to_component_index(i);
+      if (comp != 0) continue;
+      if (new_number[local[i]] == numbers::invalid_dof_index) new_number[local[i]] = 3 * nodes++;
+      node_of_point[k] = new_number[local[i]] / 3;
+    }
+    for (unsigned i = 0; i < local.size(); ++i) {
+      const auto [comp, k] = fe->system_to_component_index(i);
+      if (comp != 0) new_number[local[i]] = 3 * node_of_point[k] + comp;
+    }
+  }
+  dof_handler.renumber_dofs(new_number);
+
+  std::vector<Point<dim>> points(n_dofs);
+  DoFTools::map_dofs_to_support_points(mapping, dof_handler, points);
+  positions.resize(n_dofs);
+  for (types::global_dof_index a = 0; a < nodes; ++a)
+    for (int d = 0; d < dim; ++d) positions[3 * a + d] = points[3 * a][d];
+  layer.assign(nodes, static_cast<int>(spec.layers.size()));
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    cell->get_dof_indices(local);
+    for (const auto dof : local)
+      layer[dof / 3] = std::min<int>(layer[dof / 3], cell->material_id());
+  }
+  fixed.assign(nodes, 0u);
+}
+
+void FarField::Impl::setup_matrix_free() {
+  no_constraints.close();
+  typename MatrixFree<dim, double>::AdditionalData data;
+  data.tasks_parallel_scheme = MatrixFree<dim, double>::AdditionalData::none;
+  data.mapping_update_flags = update_gradients | update_JxW_values | update_values;
+  const std::vector<Quadrature<1>> quadratures{QGauss<1>(spec.degree + 1),
+                                               QGaussLobatto<1>(spec.degree + 1)};
+  matrix_free.reinit(mapping, std::vector<const DoFHandler<dim>*>{&dof_handler},
+                     std::vector<const AffineConstraints<double>*>{&no_constraints}, quadratures,
+                     data);
+  batch_stiffness.resize(matrix_free.n_cell_batches());
+  for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+    auto& C = batch_stiffness[cell];
+    for (auto& c : C) c = 0.0;
+    for (unsigned int lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
+      const auto& L = layer_stiffness[matrix_free.get_cell_iterator(cell, lane)->material_id()];
+      for (int k = 0; k < 9; ++k) C[k][lane] = L[k];
+    }
+  }
+  const auto n = dof_handler.n_dofs();
+  u.reinit(n);
+  v.reinit(n);
+  work_in.reinit(n);
+  work_out.reinit(n);
+  Vector<double> m(n);
+  if (spec.degree == 1)
+    lumped_mass_kernel<1>(m);
+  else
+    lumped_mass_kernel<2>(m);
+  mass.resize(n / 3);
+  for (std::size_t a = 0; a < mass.size(); ++a) {
+    mass[a] = m[3 * a];
+    if (!(mass[a] > 0.0)) throw std::logic_error("far field: a node has no positive lumped mass");
+  }
+}
+
+// The largest eigenvalue of M_e^-1 K_e over the elements, each distinct (extent, layer) once.
+double FarField::Impl::element_bound_time_step() const {
+  const QGauss<dim> gauss(spec.degree + 1);
+  const QGaussLobatto<dim> lobatto(spec.degree + 1);
+  FEValues<dim> stiff(mapping, *fe, gauss, update_gradients | update_JxW_values);
+  FEValues<dim> lump(mapping, *fe, lobatto, update_values | update_JxW_values);
+  const unsigned nd = fe->n_dofs_per_cell();
+  std::map<std::array<long long, 4>, double> seen;
+  double lambda_max = 0.0;
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    const Tensor<1, dim> extent = cell->vertex(7) - cell->vertex(0);
+    const std::array<long long, 4> key{std::llround(extent[0] * 1e12), std::llround(extent[1] * 1e12),
+                                       std::llround(extent[2] * 1e12), cell->material_id()};
+    if (seen.count(key)) continue;
+    const auto& C = layer_stiffness[cell->material_id()];
+    const double rho = spec.layers[cell->material_id()].density;
+    stiff.reinit(cell);
+    lump.reinit(cell);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
+    Eigen::VectorXd M = Eigen::VectorXd::Zero(nd);
+    for (unsigned q = 0; q < gauss.size(); ++q) {
+      std::vector<Tensor<2, dim>> grad(nd), stress(nd);
+      for (unsigned i = 0; i < nd; ++i) {
+        const unsigned ci = fe->system_to_component_index(i).first;
+        grad[i] = 0;
+        grad[i][ci] = stiff.shape_grad_component(i, q, ci);
+        stress[i] = orthotropic_stress(C, grad[i]);
+      }
+      for (unsigned i = 0; i < nd; ++i)
+        for (unsigned j = 0; j < nd; ++j)
+          K(i, j) += scalar_product(stress[i], grad[j]) * stiff.JxW(q);
+    }
+    for (unsigned q = 0; q < lobatto.size(); ++q)
+      for (unsigned i = 0; i < nd; ++i)
+        M(i) += rho * lump.shape_value_component(i, q, fe->system_to_component_index(i).first) *
+                lump.JxW(q);
+    const Eigen::VectorXd s = M.cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd A = s.asDiagonal() * K * s.asDiagonal();
+    const double lambda =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    seen[key] = lambda;
+    lambda_max = std::max(lambda_max, lambda);
+  }
+  return 2.0 / std::sqrt(lambda_max);
+}
+
+FarField::FarField(const LayeredMesh& mesh, unsigned threads) : impl_(std::make_unique<Impl>()) {
+  MultithreadInfo::set_thread_limit(std::max(1u, threads));
+  impl_->spec = mesh;
+  impl_->build_mesh();
+  impl_->number_nodes();
+  impl_->setup_matrix_free();
+  impl_->dt_stable = impl_->element_bound_time_step();
+}
+
+FarField::~FarField() = default;
+
+std::size_t FarField::node_count() const { return impl_->mass.size(); }
+std::size_t FarField::cell_count() const { return impl_->triangulation.n_active_cells(); }
+int FarField::degree() const { return impl_->spec.degree; }
+std::span<const double> FarField::reference_positions() const { return impl_->positions; }
+std::span<const double> FarField::lumped_mass() const { return impl_->mass; }
+std::span<const int> FarField::node_layer() const { return impl_->layer; }
+std::span<double> FarField::displacement() { return {impl_->u.begin(), impl_->u.size()}; }
+std::span<const double> FarField::displacement() const { return {impl_->u.begin(), impl_->u.size()}; }
+std::span<double> FarField::velocity() { return {impl_->v.begin(), impl_->v.size()}; }
+std::span<const double> FarField::velocity() const { return {impl_->v.begin(), impl_->v.size()}; }
+
+void FarField::fix(std::size_t node, unsigned components) {
+  impl_->fixed.at(node) |= components & 7u;
+  for (int d = 0; d < 3; ++d)
+    if (components & (1u << d)) impl_->u[3 * node + d] = impl_->v[3 * node + d] = 0.0;
+}
+unsigned FarField::fixed(std::size_t node) const { return impl_->fixed.at(node); }
+
+void FarField::apply_stiffness(std::span<const double> u, std::span<double> Ku) const {
+  const auto n = impl_->u.size();
+  if (u.size() != n || Ku.size() != n) throw std::invalid_argument("far field: vector size");
+  std::copy(u.begin(), u.end(), impl_->work_in.begin());
+  impl_->apply(impl_->work_in, impl_->work_out);
+  std::copy(impl_->work_out.begin(), impl_->work_out.end(), Ku.begin());
+}
+
+void FarField::internal_force(std::span<double> force) const {
+  if (force.size() != impl_->u.size()) throw std::invalid_argument("far field: force size");
+  impl_->apply(impl_->u, impl_->work_out);
+  for (std::size_t i = 0; i < force.size(); ++i) force[i] = -impl_->work_out[i];
+}
+
+void FarField::step(double dt, std::span<const double> external) {
+  auto& I = *impl_;
+  I.apply(I.u, I.work_out);  // K u
+  const std::size_t nodes = I.mass.size();
+  for (std::size_t a = 0; a < nodes; ++a)
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t i = 3 * a + d;
+      if (I.fixed[a] & (1u << d)) {
+        I.v[i] = 0.0;
+        continue;
+      }
+      const double f = -I.work_out[i] + (external.empty() ? 0.0 : external[i]);
+      I.v[i] += dt * f / I.mass[a];
+      I.u[i] += dt * I.v[i];
+    }
+}
+
+double FarField::stable_time_step() const { return impl_->dt_stable; }
+
+double FarField::kinetic_energy(std::span<const double> v) const {
+  double e = 0.0;
+  for (std::size_t a = 0; a < impl_->mass.size(); ++a)
+    e += 0.5 * impl_->mass[a] * (v[3 * a] * v[3 * a] + v[3 * a + 1] * v[3 * a + 1] + v[3 * a + 2] * v[3 * a + 2]);
+  return e;
+}
+double FarField::kinetic_energy() const { return kinetic_energy(velocity()); }
+
+double FarField::strain_energy() const {
+  impl_->apply(impl_->u, impl_->work_out);
+  return 0.5 * (impl_->u * impl_->work_out);
+}
+
+std::array<double, 3> FarField::momentum() const {
+  std::array<double, 3> p{};
+  for (std::size_t a = 0; a < impl_->mass.size(); ++a)
+    for (int d = 0; d < 3; ++d) p[d] += impl_->mass[a] * impl_->v[3 * a + d];
+  return p;
+}
+
+std::size_t FarField::bytes() const {
+  const auto& I = *impl_;
+  return I.triangulation.memory_consumption() + I.dof_handler.memory_consumption() +
+         I.matrix_free.memory_consumption() +
+         4 * I.u.memory_consumption() + I.positions.size() * sizeof(double) +
+         I.mass.size() * (sizeof(double) + sizeof(int) + sizeof(unsigned)) +
+         I.batch_stiffness.size() * sizeof(std::array<VA, 9>);
+}
+
+void FarField::write_vtu(const std::string& path) const {
+  const auto& I = *impl_;
+  DataOut<dim> out;
+  out.attach_dof_handler(I.dof_handler);
+  const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+  out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
+  out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
+  out.build_patches(I.mapping, I.spec.degree);
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write " + path);
+  out.write_vtu(file);
+}
+
+}  // namespace hvi::fem

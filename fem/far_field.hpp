@@ -1,0 +1,109 @@
+#pragma once
+// The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
+// two elements through its thickness, the core a homogenised orthotropic solid), small-strain
+// linear elasticity (total Lagrangian: every quantity refers to the undeformed mesh), explicit
+// central differences with a lumped mass, and a matrix-free stiffness (deal.II MatrixFree /
+// FEEvaluation). deal.II stays behind this header: callers see nodes as plain arrays.
+//
+// Elements are Lagrange Q2 by default: a thin facesheet one element thick bends without the
+// shear locking of trilinear Q1 bricks (tests/fem shows both). The mass is lumped by
+// Gauss-Lobatto quadrature on the element's own nodes, M_a = sum_q rho N_a(x_q) JxW_q, which for
+// nodal points is diagonal and positive for Q1 and Q2.
+//
+// Nodes are numbered 0..n-1 and every nodal array holds 3 values per node (x, y, z), node-major.
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fem/orthotropic.hpp"
+
+namespace hvi::fem {
+
+// A layer of the panel, through the thickness.
+struct Layer {
+  std::string name;
+  double z_lower = 0, z_upper = 0;  // m
+  int elements = 1;                 // through the thickness
+  Orthotropic elasticity;
+  double density = 0;  // kg/m^3
+};
+
+struct LayeredMesh {
+  std::array<double, 2> lower{};  // x, y of the mesh's lower corner
+  std::vector<double> x_steps, y_steps;  // element widths along x and y (m), from `lower`
+  std::vector<Layer> layers;             // bottom to top, each starting where the last ends
+  // Elements whose centre lies inside this in-plane box (x0, y0, x1, y1) are left out: the
+  // impact zone, where the material points are.
+  std::optional<std::array<double, 4>> hole;
+  int degree = 2;  // 1 (trilinear) or 2 (triquadratic)
+};
+
+// Element widths covering [a, b]: `fine` in [fine_lower, fine_upper] (which must be whole
+// multiples of `fine` from each other), then growing by `ratio` per element away from it up to
+// `coarse`, the first `keep` elements outside the fine region exactly `fine` and the others scaled
+// so the steps add up to b - a exactly.
+std::vector<double> graded_steps(double a, double b, double fine_lower, double fine_upper,
+                                 double fine, double ratio, double coarse, int keep = 1);
+
+class FarField {
+ public:
+  // `threads`: the cap on deal.II's own (TBB) threads; its loops here run on the calling thread.
+  explicit FarField(const LayeredMesh& mesh, unsigned threads = 1);
+  ~FarField();
+  FarField(const FarField&) = delete;
+  FarField& operator=(const FarField&) = delete;
+
+  std::size_t node_count() const;
+  std::size_t cell_count() const;
+  int degree() const;
+  // Undeformed node positions, 3 per node.
+  std::span<const double> reference_positions() const;
+  // Lumped mass of each node, kg (one value per node).
+  std::span<const double> lumped_mass() const;
+  // The layer of each node: the lowest-numbered layer of the cells around it.
+  std::span<const int> node_layer() const;
+
+  // State, 3 per node. Velocities live at half steps (central differences).
+  std::span<double> displacement();
+  std::span<const double> displacement() const;
+  std::span<double> velocity();
+  std::span<const double> velocity() const;
+
+  // Essential conditions: components (bit d for axis d) of a node held at zero displacement.
+  void fix(std::size_t node, unsigned components);
+  unsigned fixed(std::size_t node) const;
+
+  // f = -K u at the current displacement, 3 per node (N); `force` must hold 3 * node_count().
+  void internal_force(std::span<double> force) const;
+  // K applied to any nodal vector (N): for tests and energy.
+  void apply_stiffness(std::span<const double> u, std::span<double> Ku) const;
+
+  // One central-difference step of the far field alone: v += dt M^-1 (f_int + f_ext), then
+  // u += dt v, fixed components held at zero. `external` may be empty.
+  void step(double dt, std::span<const double> external = {});
+
+  // The stable time step 2 / omega_max, with omega_max^2 bounded from above by the largest
+  // eigenvalue of M_e^-1 K_e over the elements (the element eigenvalue theorem: the assembled
+  // system's is never larger). Computed once from the element matrices, never guessed.
+  double stable_time_step() const;
+
+  // Energies (J): kinetic 1/2 sum m v^2 of the current velocities, strain 1/2 u.K u.
+  double kinetic_energy() const;
+  double strain_energy() const;
+  double kinetic_energy(std::span<const double> v) const;
+  std::array<double, 3> momentum() const;
+
+  std::size_t bytes() const;
+  // The mesh and the current displacement and velocity as a VTU file for ParaView.
+  void write_vtu(const std::string& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hvi::fem
