@@ -1,0 +1,139 @@
+#include "coupling/far_field_coupling.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace hvi::coupling {
+
+namespace {
+
+// Weights of the grid nodes around coordinate s (in cells from the origin) along one axis: a
+// single node when s is a node (to 1e-9 of a cell), else the two neighbours, linearly.
+int axis_weights(double s, int n_cells, std::array<int, 2>& node, std::array<double, 2>& w) {
+  const double r = std::round(s);
+  if (std::abs(s - r) < 1e-9) {
+    node[0] = static_cast<int>(r);
+    w[0] = 1.0;
+    return node[0] >= 0 && node[0] <= n_cells ? 1 : -1;
+  }
+  node[0] = static_cast<int>(std::floor(s));
+  node[1] = node[0] + 1;
+  w[1] = s - node[0];
+  w[0] = 1.0 - w[1];
+  return node[0] >= 0 && node[1] <= n_cells ? 2 : -1;
+}
+
+const mpm::GridNode* find_node(const mpm::SparseGrid& grid, const std::array<int, 3>& n) {
+  const std::uint32_t b = grid.find(mpm::SparseGrid::key_of_node(n[0], n[1], n[2]));
+  if (b == mpm::SparseGrid::none) return nullptr;
+  constexpr int s = mpm::SparseGrid::index_shift, e = mpm::SparseGrid::block_edge;
+  return grid.block(b) + mpm::local_node((n[0] + s) % e, (n[1] + s) % e, (n[2] + s) % e);
+}
+
+}  // namespace
+
+FarFieldCoupling::FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid,
+                                   const InterfaceBand& band, double flip, double safety)
+    : far_field_(far_field), flip_(flip), safety_(safety) {
+  const auto x = far_field.reference_positions();
+  const std::size_t n = far_field.node_count();
+  tied_.assign(n, 0);
+  force_.assign(3 * n, 0.0);
+  increment_.assign(3 * n, 0.0);
+  nodal_velocity_.assign(3 * n, 0.0);
+  const double tol = 1e-9 * grid.cell_size;
+  const auto& z = band.zone;
+  for (std::size_t a = 0; a < n; ++a) {
+    const double px = x[3 * a], py = x[3 * a + 1];
+    const bool in_band = px >= z[0] - band.width - tol && px <= z[2] + band.width + tol &&
+                         py >= z[1] - band.width - tol && py <= z[3] + band.width + tol;
+    if (!in_band) continue;
+    std::array<std::array<int, 2>, 3> node{};
+    std::array<std::array<double, 2>, 3> w{};
+    std::array<int, 3> count{};
+    for (int d = 0; d < 3; ++d) {
+      count[d] = axis_weights((x[3 * a + d] - grid.origin[d]) / grid.cell_size, grid.cells[d], node[d], w[d]);
+      if (count[d] < 0)
+        throw std::invalid_argument("far-field node " + std::to_string(a) + " of the interface band lies outside the MPM grid");
+    }
+    for (int i = 0; i < count[0]; ++i)
+      for (int j = 0; j < count[1]; ++j)
+        for (int k = 0; k < count[2]; ++k) {
+          const double weight = w[0][i] * w[1][j] * w[2][k];
+          if (weight > 0.0) ties_.push_back({static_cast<std::uint32_t>(a), {node[0][i], node[1][j], node[2][k]}, weight});
+        }
+    tied_[a] = 1;
+    ++tied_nodes_;
+    exact_nodes_ += count[0] * count[1] * count[2] == 1;
+  }
+  if (tied_nodes_ == 0)
+    throw std::invalid_argument("the interface band ties no far-field node to the MPM grid");
+}
+
+void FarFieldCoupling::request_blocks(std::vector<std::uint64_t>& keys) const {
+  for (const Tie& t : ties_) keys.push_back(mpm::SparseGrid::key_of_node(t.grid[0], t.grid[1], t.grid[2]));
+}
+
+void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double, double) {
+  const auto m = far_field_.lumped_mass();
+  const auto v = far_field_.velocity();
+  if (stage == mpm::GridStage::force) far_field_.internal_force(force_);
+  for (const Tie& t : ties_) {
+    mpm::GridNode* node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
+    const double wm = t.weight * m[t.node];
+    const std::size_t i = 3 * t.node;
+    switch (stage) {
+      case mpm::GridStage::mass_momentum:
+        node->mass += wm;
+        for (int d = 0; d < 3; ++d) node->p[d] += wm * v[i + d];
+        break;
+      case mpm::GridStage::force:
+        for (int d = 0; d < 3; ++d) node->f[d] += t.weight * force_[i + d];
+        break;
+      case mpm::GridStage::remapped:
+        for (int d = 0; d < 3; ++d) node->q[d] += wm * v[i + d];
+        break;
+    }
+  }
+}
+
+void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, double dt) {
+  // After update_grid: p = v_I at the start of the step, f = dv_I over it.
+  std::fill(increment_.begin(), increment_.end(), 0.0);
+  std::fill(nodal_velocity_.begin(), nodal_velocity_.end(), 0.0);
+  for (const Tie& t : ties_) {
+    const mpm::GridNode* node = find_node(grid, t.grid);
+    const std::size_t i = 3 * t.node;
+    for (int d = 0; d < 3; ++d) {
+      increment_[i + d] += t.weight * node->f[d];
+      nodal_velocity_[i + d] += t.weight * (node->p[d] + node->f[d]);
+    }
+  }
+  const auto m = far_field_.lumped_mass();
+  auto v = far_field_.velocity();
+  auto u = far_field_.displacement();
+  for (std::size_t a = 0; a < m.size(); ++a) {
+    const unsigned fixed = far_field_.fixed(a);
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t i = 3 * a + d;
+      if (fixed & (1u << d)) {
+        v[i] = 0.0;
+        continue;
+      }
+      if (tied_[a])
+        v[i] = flip_ * (v[i] + increment_[i]) + (1.0 - flip_) * nodal_velocity_[i];
+      else
+        v[i] += dt * force_[i] / m[a];
+      u[i] += dt * v[i];
+    }
+  }
+}
+
+double FarFieldCoupling::stable_time_step() const { return safety_ * far_field_.stable_time_step(); }
+
+FarFieldEnergy FarFieldCoupling::energy() const {
+  return {far_field_.kinetic_energy(), far_field_.strain_energy(), far_field_.momentum()};
+}
+
+}  // namespace hvi::coupling

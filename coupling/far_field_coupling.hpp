@@ -1,0 +1,79 @@
+#pragma once
+// The hybrid: the finite-element far field (fem/) and the MPM impact zone (mpm/) share the
+// background-grid nodes of an interface band, and advance with one time step.
+//
+// Every far-field node within `band` of the MPM zone is tied to the grid node it sits on (in plane
+// it lies exactly on one; through the thickness a panel's layer surfaces need not fall on grid
+// planes, so a node between two planes is tied to both with linear weights w, which are 0 and 1
+// when it does lie on a plane). For a tied node a, at each step (MUSL, USL or USF alike, through
+// the hooks of mpm/grid_coupling.hpp):
+//   m_I += w m_a                      lumped far-field mass      (stage mass_momentum)
+//   p_I += w m_a v_a^(n-1/2)          far-field momentum
+//   f_I += w f_a,  f = -K u^n         far-field internal force   (stage force)
+// the grid solves v_I, dv_I = dt f_I / m_I once for both sides, and the tied node takes
+//   v_a <- flip (v_a + sum_I w dv_I) + (1 - flip) sum_I w (v_I + dv_I)
+// with the solver's FLIP fraction, then u_a += dt v_a (every other far-field node takes its own
+// central-difference step, v += dt f / m). The particles see the same nodal increments, so the
+// total momentum of particles plus far field changes by dt sum_I f_I = 0: it is conserved
+// exactly, for any FLIP fraction (flip = 1 adds every node's increment to its own velocity; PIC
+// gives every tied node and particle the nodal velocity). With MUSL the tied nodes add their new
+// momentum w m_a v_a to the remap (stage remapped).
+//
+// The far field's stable step (its element bound, times `safety`) enters the solver's choice of
+// time step, so both sides take the smaller of the two limits.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "fem/far_field.hpp"
+#include "mpm/grid_coupling.hpp"
+
+namespace hvi::coupling {
+
+struct InterfaceBand {
+  std::array<double, 4> zone{};  // in-plane box of the MPM zone: x0, y0, x1, y1 (m)
+  double width = 0.0;            // far-field nodes up to this far outside the zone are tied (m)
+};
+
+struct FarFieldEnergy {
+  double kinetic = 0.0;  // 1/2 sum m v^2 at the current (half-step) velocities, J
+  double strain = 0.0;   // 1/2 u.K u at the current displacement, J
+  std::array<double, 3> momentum{};  // kg m/s
+  double total() const { return kinetic + strain; }
+};
+
+class FarFieldCoupling : public mpm::GridCoupling {
+ public:
+  // Throws std::invalid_argument when a tied node lies outside the grid or the band ties none.
+  FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid, const InterfaceBand& band,
+                   double flip = 1.0, double safety = 0.9);
+
+  void request_blocks(std::vector<std::uint64_t>& keys) const override;
+  void add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double time, double dt) override;
+  void take_from_grid(const mpm::SparseGrid& grid, double time, double dt) override;
+  double stable_time_step() const override;
+
+  std::size_t tied_node_count() const { return tied_nodes_; }
+  // Tied nodes that lie exactly on a grid node (weight 1).
+  std::size_t exact_node_count() const { return exact_nodes_; }
+  FarFieldEnergy energy() const;
+  const fem::FarField& far_field() const { return far_field_; }
+  // The far-field internal force of the last step (N, 3 per node).
+  const std::vector<double>& internal_force() const { return force_; }
+
+ private:
+  struct Tie {
+    std::uint32_t node;          // far-field node
+    std::array<int, 3> grid;     // global grid node (i, j, k)
+    double weight;
+  };
+  fem::FarField& far_field_;
+  double flip_, safety_;
+  std::vector<Tie> ties_;               // grouped by far-field node
+  std::vector<std::uint8_t> tied_;      // per far-field node
+  std::vector<double> force_;           // -K u^n, 3 per node
+  std::vector<double> increment_, nodal_velocity_;  // per node: sum w dv_I, sum w (v_I + dv_I)
+  std::size_t tied_nodes_ = 0, exact_nodes_ = 0;
+};
+
+}  // namespace hvi::coupling
