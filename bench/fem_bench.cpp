@@ -1,0 +1,51 @@
+// Benchmark of the finite-element far field. Run: build/hvi_bench --benchmark_filter=FarField
+// The quarter of a 300 x 300 mm study panel (t_f = t_r = 0.5 mm, S = 14.2 mm, D_hc = 3 mm,
+// t_hc = 0.05 mm) around a 24 x 24 mm MPM zone: elements of 0.4 mm (the grid's cell) at the
+// interface growing by 1.25 per element up to 3 mm (6 t_f, the Q1 locking rule), the faces one
+// element and the core four elements through the thickness. Reports node_steps_per_s (nodes x
+// steps / wall time, one thread: the far field runs on the calling thread) and bytes_per_node.
+#include <benchmark/benchmark.h>
+
+#include "fem/far_field.hpp"
+
+namespace {
+
+hvi::fem::LayeredMesh study_panel_quarter(int degree) {
+  using namespace hvi::fem;
+  const double h = 0.4e-3, zone = 12e-3, half = 150e-3;
+  LayeredMesh m;
+  m.lower = {0, 0};
+  // Fine elements (h for Q1, 2h for Q2 so that every node sits on a grid node) over the zone and
+  // two elements beyond it, then graded.
+  const double fine = degree == 1 ? h : 2 * h;
+  m.x_steps = m.y_steps = graded_steps(0, half, 0, zone + 2 * fine, fine, 1.25, 3e-3, 0);
+  m.hole = std::array<double, 4>{-1, -1, zone, zone};
+  const Orthotropic face = isotropic(75e9, 0.33), core = honeycomb_core(73e9, 0.33, 3e-3, 0.05e-3);
+  const double rho_core = 2680 * honeycomb_core_solidity(3e-3, 0.05e-3);
+  m.layers = {{"rear", -15.2e-3, -14.7e-3, 1, face, 2770},
+              {"core", -14.7e-3, -0.5e-3, 4, core, rho_core},
+              {"front", -0.5e-3, 0, 1, face, 2770}};
+  m.degree = degree;
+  return m;
+}
+
+void FarFieldPanel(benchmark::State& state) {
+  hvi::fem::FarField f(study_panel_quarter(static_cast<int>(state.range(0))));
+  const double dt = 0.9 * f.stable_time_step();
+  auto v = f.velocity();
+  for (std::size_t a = 0; a < f.node_count(); ++a) v[3 * a + 2] = 1.0;  // something to move
+  const int steps = 100;
+  for (auto _ : state)
+    for (int s = 0; s < steps; ++s) f.step(dt);
+  const double nodes = static_cast<double>(f.node_count());
+  state.counters["nodes"] = nodes;
+  state.counters["cells"] = static_cast<double>(f.cell_count());
+  state.counters["dt_ns"] = dt * 1e9;
+  state.counters["node_steps_per_s"] =
+      benchmark::Counter(nodes * steps * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["bytes_per_node"] = static_cast<double>(f.bytes()) / nodes;
+}
+
+BENCHMARK(FarFieldPanel)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
