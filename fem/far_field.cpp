@@ -64,30 +64,25 @@ std::vector<double> graded_steps(double a, double b, double fine_lower, double f
   if (std::abs(n_fine - std::round(n_fine)) > 1e-9 * std::max(1.0, n_fine))
     throw std::invalid_argument("graded_steps: the fine region is not a whole number of fine steps");
   // Steps from the fine region outwards over a length L.
+  // Steps from the fine region outwards over a length L: grow until they pass L, then shrink the
+  // ones beyond the kept steps (or the last step, if all are kept) so they end exactly at L and
+  // none exceeds `coarse`.
   auto outward = [&](double L) {
     std::vector<double> s;
     if (L <= 1e-12 * fine) return s;
     double sum = 0.0, next = fine;
-    while (sum + next <= L * (1 + 1e-12)) {
+    while (sum < L * (1 - 1e-12)) {
       s.push_back(next);
       sum += next;
       if (static_cast<int>(s.size()) >= keep) next = std::min(next * ratio, coarse);
     }
-    const double rest = L - sum;
-    if (rest > 1e-9 * fine) {
-      if (s.size() > static_cast<std::size_t>(keep) || s.empty() || rest > 0.5 * fine) {
-        // Spread the remainder over the steps beyond the kept ones (or add one step).
-        if (static_cast<int>(s.size()) > keep) {
-          double tail = 0.0;
-          for (std::size_t i = keep; i < s.size(); ++i) tail += s[i];
-          const double scale = (tail + rest) / tail;
-          for (std::size_t i = keep; i < s.size(); ++i) s[i] *= scale;
-        } else {
-          s.push_back(rest);
-        }
-      } else {
-        s.back() += rest;
-      }
+    if (static_cast<int>(s.size()) > keep) {
+      double kept = 0.0, tail = 0.0;
+      for (std::size_t i = 0; i < s.size(); ++i) (static_cast<int>(i) < keep ? kept : tail) += s[i];
+      const double scale = (L - kept) / tail;
+      for (std::size_t i = keep; i < s.size(); ++i) s[i] *= scale;
+    } else {
+      s.back() -= sum - L;
     }
     return s;
   };

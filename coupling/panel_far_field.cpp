@@ -1,0 +1,68 @@
+#include "coupling/panel_far_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace hvi::coupling {
+
+namespace {
+
+bool on_grid_plane(double x, const mpm::GridGeometry& grid, int axis) {
+  const double s = (x - grid.origin[axis]) / grid.cell_size;
+  return std::abs(s - std::round(s)) < 1e-9;
+}
+
+// Element lengths along one axis of the panel [a, b] with the zone [z0, z1].
+std::vector<double> axis_steps(double a, double b, double z0, double z1, const PanelFarFieldSpec& s,
+                               double h, double max_element, int axis, const mpm::GridGeometry& grid) {
+  const char* name = axis == 0 ? "x" : "y";
+  if (!(a <= z0 && z0 < z1 && z1 <= b))
+    throw std::invalid_argument(std::string("far field: the MPM zone's ") + name +
+                                " range must lie inside the panel's in-plane extent");
+  if (!on_grid_plane(z0, grid, axis) || !on_grid_plane(z1, grid, axis))
+    throw std::invalid_argument(std::string("far field: the MPM zone's ") + name +
+                                " bounds must lie on grid planes, so the interface nodes are grid nodes");
+  // The fine region: the zone plus the band, as far as the panel reaches (a panel edge on a
+  // symmetry plane may coincide with the zone's).
+  const double f0 = std::max(a, z0 - s.band_elements * h), f1 = std::min(b, z1 + s.band_elements * h);
+  auto snap = [&](double x) { return grid.origin[axis] + std::round((x - grid.origin[axis]) / h) * h; };
+  return fem::graded_steps(a, b, a < f0 ? snap(f0) : a, b > f1 ? snap(f1) : b, h, s.ratio, max_element, 0);
+}
+
+}  // namespace
+
+fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
+                                      const PanelFarFieldSpec& spec, const mpm::GridGeometry& grid) {
+  const double h = grid.cell_size;
+  const double max_element =
+      spec.max_element > 0 ? spec.max_element : 6.0 * std::min(panel.front_thickness, panel.rear_thickness);
+  if (max_element < h) throw std::invalid_argument("far field: the largest element is smaller than a grid cell");
+  if (spec.core_elements < 1 || spec.face_elements < 1)
+    throw std::invalid_argument("far field: need at least one element through each layer");
+  fem::LayeredMesh m;
+  m.degree = 1;
+  m.lower = {panel.lower[0], panel.lower[1]};
+  const auto& z = spec.zone;
+  m.x_steps = axis_steps(panel.lower[0], panel.upper[0], z[0], z[2], spec, h, max_element, 0, grid);
+  m.y_steps = axis_steps(panel.lower[1], panel.upper[1], z[1], z[3], spec, h, max_element, 1, grid);
+  m.hole = spec.zone;
+  const auto rear = panel.rear_box(), core = panel.core_box(), front = panel.front_box();
+  auto iso = [](const SolidMaterial& s) { return fem::isotropic(s.youngs_modulus, s.poisson_ratio); };
+  const double solidity = fem::honeycomb_core_solidity(panel.cell_diameter, panel.wall_thickness);
+  m.layers = {
+      {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density},
+      {"core", core.lower[2], core.upper[2], spec.core_elements,
+       fem::honeycomb_core(spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio, panel.cell_diameter,
+                           panel.wall_thickness),
+       spec.core_wall.density * solidity},
+      {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density}};
+  return m;
+}
+
+InterfaceBand panel_interface_band(const PanelFarFieldSpec& spec, const mpm::GridGeometry& grid) {
+  return {spec.zone, spec.band_elements * grid.cell_size};
+}
+
+}  // namespace hvi::coupling
