@@ -24,13 +24,6 @@ int axis_weights(double s, int n_cells, std::array<int, 2>& node, std::array<dou
   return node[0] >= 0 && node[1] <= n_cells ? 2 : -1;
 }
 
-const mpm::GridNode* find_node(const mpm::SparseGrid& grid, const std::array<int, 3>& n) {
-  const std::uint32_t b = grid.find(mpm::SparseGrid::key_of_node(n[0], n[1], n[2]));
-  if (b == mpm::SparseGrid::none) return nullptr;
-  constexpr int s = mpm::SparseGrid::index_shift, e = mpm::SparseGrid::block_edge;
-  return grid.block(b) + mpm::local_node((n[0] + s) % e, (n[1] + s) % e, (n[2] + s) % e);
-}
-
 }  // namespace
 
 FarFieldCoupling::FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid,
@@ -103,7 +96,7 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
   std::fill(increment_.begin(), increment_.end(), 0.0);
   std::fill(nodal_velocity_.begin(), nodal_velocity_.end(), 0.0);
   for (const Tie& t : ties_) {
-    const mpm::GridNode* node = find_node(grid, t.grid);
+    const mpm::GridNode* node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
     const std::size_t i = 3 * t.node;
     for (int d = 0; d < 3; ++d) {
       increment_[i + d] += t.weight * node->f[d];

@@ -39,6 +39,9 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   const double max_element =
       spec.max_element > 0 ? spec.max_element : 6.0 * std::min(panel.front_thickness, panel.rear_thickness);
   if (max_element < h) throw std::invalid_argument("far field: the largest element is smaller than a grid cell");
+  if (panel.double_walls)
+    throw std::invalid_argument("far field: the homogenised core has closed forms for single walls only; "
+                                "a panel with double_walls cannot have a far field yet");
   if (spec.core_elements < 1 || spec.face_elements < 1)
     throw std::invalid_argument("far field: need at least one element through each layer");
   fem::LayeredMesh m;

@@ -30,7 +30,8 @@ struct PanelFarFieldSpec {
   int face_elements = 1;         // through each facesheet
 };
 
-// Throws std::invalid_argument when the zone is not on grid planes or not inside the panel.
+// Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, or the
+// panel has double walls (the core's closed forms are for single walls).
 fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
                                       const PanelFarFieldSpec& spec, const mpm::GridGeometry& grid);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace hvi::mpm {
 
@@ -92,12 +93,16 @@ std::array<int, 3> SparseGrid::block_origin(std::uint32_t b) const {
           c[2] * block_edge - index_shift};
 }
 
-GridNode* SparseGrid::node(int i, int j, int k) {
+const GridNode* SparseGrid::node(int i, int j, int k) const {
   const std::uint32_t b = find(key_of_node(i, j, k));
   if (b == none) return nullptr;
   const int lx = (i + index_shift) % block_edge, ly = (j + index_shift) % block_edge,
             lz = (k + index_shift) % block_edge;
   return block(b) + local_node(lx, ly, lz);
+}
+
+GridNode* SparseGrid::node(int i, int j, int k) {
+  return const_cast<GridNode*>(std::as_const(*this).node(i, j, k));
 }
 
 std::size_t SparseGrid::bytes() const {

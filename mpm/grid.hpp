@@ -79,6 +79,7 @@ class SparseGrid {
   std::array<int, 3> block_origin(std::uint32_t b) const;
   // Node (i, j, k) if its block is active, else nullptr.
   GridNode* node(int i, int j, int k);
+  const GridNode* node(int i, int j, int k) const;
 
   std::span<GridNode> nodes() { return nodes_; }
   std::size_t bytes() const;

@@ -67,11 +67,14 @@ TEST(PanelFarField, LayersMassAndInterfaceNodesFollowThePanelAndTheGrid) {
   EXPECT_LT(coupling.exact_node_count(), in_band);
 }
 
-TEST(PanelFarField, RefusesAZoneOffTheGridPlanes) {
+TEST(PanelFarField, RefusesAZoneOffTheGridPlanesAndDoubleWalls) {
   StudyPanel s;
   s.spec.zone = {0, 0, 9.3e-3, 9.2e-3};
   EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
   s.spec.zone = {0, 0, 40e-3, 9.2e-3};
+  EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
+  s.spec.zone = {0, 0, 9.2e-3, 9.2e-3};
+  s.panel.double_walls = true;
   EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
 }
 
