@@ -20,7 +20,7 @@ double snap(double v) {
 }
 
 // Liang-Barsky: clips the segment a + s (b - a), s in [0, 1], to the closed rectangle; returns
-// false when nothing is left.
+// false when nothing (or a round-off sliver) is left.
 bool clip_segment(const Point2& a, const Point2& b, const Point2& lower, const Point2& upper,
                   double& s0, double& s1) {
   s0 = 0.0;
@@ -40,7 +40,7 @@ bool clip_segment(const Point2& a, const Point2& b, const Point2& lower, const P
       }
     }
   }
-  return s1 > s0;
+  return s1 - s0 > 1e-12;  // a wall that only touches the rectangle (round-off) is not in it
 }
 
 }  // namespace
