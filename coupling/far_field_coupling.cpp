@@ -114,19 +114,27 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
         v[i] = 0.0;
         continue;
       }
-      if (tied_[a])
+      if (tied_[a]) {
+        // Like a particle: its velocity takes the FLIP blend, but it moves with the nodal
+        // velocity, so both sides of the interface deform with the same velocity field.
         v[i] = flip_ * (v[i] + increment_[i]) + (1.0 - flip_) * nodal_velocity_[i];
-      else
+        u[i] += dt * nodal_velocity_[i];
+      } else {
         v[i] += dt * force_[i] / m[a];
-      u[i] += dt * v[i];
+        u[i] += dt * v[i];
+      }
     }
   }
 }
 
 double FarFieldCoupling::stable_time_step() const { return safety_ * far_field_.stable_time_step(); }
 
-FarFieldEnergy FarFieldCoupling::energy() const {
+mpm::CoupledEnergy FarFieldCoupling::energy() const {
   return {far_field_.kinetic_energy(), far_field_.strain_energy(), far_field_.momentum()};
+}
+
+std::vector<std::pair<std::string, std::span<double>>> FarFieldCoupling::state() {
+  return {{"far_field_displacement", far_field_.displacement()}, {"far_field_velocity", far_field_.velocity()}};
 }
 
 }  // namespace hvi::coupling

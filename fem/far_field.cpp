@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <stdexcept>
@@ -423,9 +424,27 @@ void FarField::write_vtu(const std::string& path) const {
   out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
   out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
   out.build_patches(I.mapping, I.spec.degree);
+  DataOutBase::VtkFlags flags;
+  flags.print_date_and_time = false;  // the same state gives the same bytes
+  out.set_flags(flags);
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
   out.write_vtu(file);
+}
+
+void FarField::write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries) {
+  // Written here rather than by DataOutBase::write_pvd_record, which stamps the date and time
+  // into the file: the same run must give the same bytes.
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write " + path);
+  file << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" ByteOrder=\"LittleEndian\">\n"
+          "  <Collection>\n";
+  char time[32];
+  for (const auto& [t, name] : entries) {
+    std::snprintf(time, sizeof time, "%.17g", t);
+    file << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << name << "\"/>\n";
+  }
+  file << "  </Collection>\n</VTKFile>\n";
 }
 
 }  // namespace hvi::fem

@@ -100,6 +100,8 @@ class FarField {
   std::size_t bytes() const;
   // The mesh and the current displacement and velocity as a VTU file for ParaView.
   void write_vtu(const std::string& path) const;
+  // A ParaView collection (.pvd) of VTU files: (time, file relative to the .pvd) per entry.
+  static void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);
 
  private:
   struct Impl;

@@ -8,11 +8,17 @@
 //                           momentum remap (stage `remapped`)
 //   3. take_from_grid       after the nodal velocities at the end of the step are known
 //   4. stable_time_step     when the next time step is chosen
+// and two for the run around the step: energy() enters the solver's energy balance, state()
+// names the arrays a checkpoint saves and a resumed run fills back.
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "mpm/grid.hpp"
+#include "mpm/types.hpp"
 
 namespace hvi::mpm {
 
@@ -20,6 +26,12 @@ enum class GridStage {
   mass_momentum,  // node mass and p = momentum are scattered
   force,          // f = force is scattered
   remapped,       // MUSL: p = momentum remapped from the updated particle velocities
+};
+
+// What a coupled model holds of the balance: its own kinetic and strain energy and momentum.
+struct CoupledEnergy {
+  double kinetic = 0.0, strain = 0.0;  // J
+  Vec3 momentum{};                     // kg m/s
 };
 
 class GridCoupling {
@@ -30,6 +42,10 @@ class GridCoupling {
                            double /*dt*/) {}
   virtual void take_from_grid(const SparseGrid& /*grid*/, double /*time*/, double /*dt*/) {}
   virtual double stable_time_step() const { return std::numeric_limits<double>::infinity(); }
+  virtual CoupledEnergy energy() const { return {}; }
+  // Restartable state: named arrays (names unique across a solver's couplings) a checkpoint
+  // writes and a resumed run fills back in place, same sizes.
+  virtual std::vector<std::pair<std::string, std::span<double>>> state() { return {}; }
 };
 
 }  // namespace hvi::mpm

@@ -357,6 +357,12 @@ EnergyReport Solver::energy() const {
   e.removed = r.kinetic + r.internal;
   e.removed_momentum = r.momentum;
   e.removed_mass = r.mass;
+  for (const auto* c : couplings_) {
+    const CoupledEnergy ce = c->energy();
+    e.coupled_kinetic += ce.kinetic;
+    e.coupled_strain += ce.strain;
+    for (int d = 0; d < 3; ++d) e.momentum[d] += ce.momentum[d];
+  }
   return e;
 }
 

@@ -62,8 +62,9 @@ struct EnergyReport {
   double internal = 0.0;    // recoverable (strain) part of the internal energy, J
   double dissipated = 0.0;  // plastic work and viscous heating, J
   double removed = 0.0;     // kinetic + internal energy carried out of the domain, J
-  double total() const { return kinetic + internal + dissipated + removed; }
-  Vec3 momentum{};          // of the particles in the domain, kg m/s
+  double coupled_kinetic = 0.0, coupled_strain = 0.0;  // held by coupled models (far field), J
+  double total() const { return kinetic + internal + dissipated + removed + coupled_kinetic + coupled_strain; }
+  Vec3 momentum{};          // of the particles in the domain and the coupled models, kg m/s
   Vec3 removed_momentum{};
   double mass = 0.0, removed_mass = 0.0;
 };
@@ -99,6 +100,7 @@ class Solver {
   const SolverSettings& settings() const { return settings_; }
   const SparseGrid& grid() const { return grid_; }
   void add_coupling(GridCoupling* coupling) { couplings_.push_back(coupling); }
+  const std::vector<GridCoupling*>& couplings() const { return couplings_; }
 
   // Before the first step: groups particles by material, declares and initialises material state,
   // and chooses the first time step. With `restored`, the particles and state come from a

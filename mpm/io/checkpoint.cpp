@@ -1,5 +1,7 @@
 #include "mpm/io/checkpoint.hpp"
 
+#include <algorithm>
+
 #include "mpm/io/hdf5_file.hpp"
 
 namespace hvi::mpm::io {
@@ -9,6 +11,7 @@ namespace fs = std::filesystem;
 namespace {
 const std::string kind_prefix = "kind:";     // attribute kind:<name> = FieldKind
 const std::string extra_prefix = "extra:";
+const std::string coupled_prefix = "coupled_";  // datasets of the couplings' state
 }  // namespace
 
 void write_checkpoint(const fs::path& path, const Solver& solver, const CheckpointExtras& extras) {
@@ -36,6 +39,8 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
     for (int d = 0; d < 3; ++d)
       file.write_attribute("removed_momentum_" + std::to_string(d), s.removed.momentum[d]);
     for (const auto& [key, value] : extras) file.write_attribute(extra_prefix + key, value);
+    for (auto* c : solver.couplings())
+      for (const auto& [name, data] : c->state()) file.write(coupled_prefix + name, data.data(), data.size(), 1);
   }
   fs::rename(tmp, path);
 }
@@ -69,6 +74,16 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
   s.removed.internal = file.read_double_attribute("removed_internal");
   for (int d = 0; d < 3; ++d)
     s.removed.momentum[d] = file.read_double_attribute("removed_momentum_" + std::to_string(d));
+  for (auto* c : solver.couplings())
+    for (const auto& [name, data] : c->state()) {
+      if (!file.has_dataset(coupled_prefix + name))
+        throw Hdf5Error(path.string() + " holds no " + name + ": it was written by a run without this coupled model");
+      const std::vector<double> saved = file.read_doubles(coupled_prefix + name);
+      if (saved.size() != data.size())
+        throw Hdf5Error(path.string() + ": " + name + " has " + std::to_string(saved.size()) + " values, this scene's " +
+                        std::to_string(data.size()));
+      std::copy(saved.begin(), saved.end(), data.begin());
+    }
   solver.restore(s);
   CheckpointExtras extras;
   for (const auto& name : file.attribute_names())

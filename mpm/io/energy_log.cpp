@@ -7,12 +7,14 @@
 
 namespace hvi::mpm::io {
 
-std::string EnergyLog::header() {
-  return "step,time,dt,kinetic,internal,dissipated,removed,total,momentum_x,momentum_y,momentum_z,"
-         "mass_removed,particles_removed";
+std::string EnergyLog::header(bool coupled) {
+  return std::string("step,time,dt,kinetic,internal,dissipated,removed,total,momentum_x,momentum_y,momentum_z,"
+                     "mass_removed,particles_removed") +
+         (coupled ? ",coupled_kinetic,coupled_strain" : "");
 }
 
-EnergyLog::EnergyLog(const std::filesystem::path& path, std::int64_t resume_step) {
+EnergyLog::EnergyLog(const std::filesystem::path& path, std::int64_t resume_step, bool coupled)
+    : coupled_(coupled) {
   std::vector<std::string> kept;
   if (resume_step >= 0) {
     std::ifstream in(path);
@@ -24,18 +26,20 @@ EnergyLog::EnergyLog(const std::filesystem::path& path, std::int64_t resume_step
     }
   }
   out_.open(path, std::ios::trunc);
-  out_ << header() << '\n';
+  out_ << header(coupled_) << '\n';
   for (const auto& l : kept) out_ << l << '\n';
   out_.flush();
 }
 
 void EnergyLog::write(const Solver& solver, const EnergyReport& e) {
   const auto& r = solver.removed();
-  out_ << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n",
+  out_ << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}",
                       solver.step_count(), solver.time(), solver.next_time_step(), e.kinetic,
                       e.internal, e.dissipated, e.removed, e.total(),
                       e.momentum[0] + e.removed_momentum[0], e.momentum[1] + e.removed_momentum[1],
                       e.momentum[2] + e.removed_momentum[2], e.removed_mass, r.particles);
+  if (coupled_) out_ << fmt::format(",{:.17g},{:.17g}", e.coupled_kinetic, e.coupled_strain);
+  out_ << '\n';
   out_.flush();
 }
 
