@@ -11,7 +11,7 @@ TableSpec measure_table() {
               .doc = "A quantity measured at the end of the run (summary.json, hvi convergence).",
               .array = true};
   t.string_required("name", "Name of the quantity in the outputs")
-      .choice_required("kind", {"extent_max", "extent_min", "diameter", "field_max", "field_min", "energy_error", "peak_pressure", "holes"},
+      .choice_required("kind", {"extent_max", "extent_min", "diameter", "field_max", "field_min", "energy_error", "peak_pressure", "holes", "displacement"},
                        "What to measure (see the README's Measures section)")
       .choice("axis", {"x", "y", "z"}, "z", "Axis of an extent, or of the line a diameter is measured around")
       .string("body", "", "Restrict a geometric measure to this body (default: all)")
@@ -20,7 +20,10 @@ TableSpec measure_table() {
       .quantity("offset", dims::length, Range{}, 0.0, "Added to an extent or to the radius of a diameter")
       .optional_quantity("from", dims::length, Range{}, "Diameter: lowest coordinate along the axis of the particles counted")
       .optional_quantity("to", dims::length, Range{}, "Diameter: highest coordinate along the axis of the particles counted")
-      .vector("center", dims::length, std::vector<double>{0, 0, 0}, "Diameter: a point of the line");
+      .vector("center", dims::length, std::vector<double>{0, 0, 0}, "Diameter: a point of the line")
+      .vector("point", dims::length, std::nullopt,
+              "Displacement: the probe's point in the undeformed configuration; its `axis` component is "
+                       "followed in probes.csv at every energy.csv row");
   return t;
 }
 
@@ -43,6 +46,13 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
     m.to = t["to"].value<double>();
     const toml::array& c = *t["center"].as_array();
     for (int d = 0; d < 3; ++d) m.center[d] = c[d].value<double>().value();
+    if (const toml::array* point = t["point"].as_array()) {
+      m.point = std::array<double, 3>{};
+      for (int d = 0; d < 3; ++d) (*m.point)[d] = (*point)[d].value<double>().value();
+    }
+    if ((m.kind == "displacement") != m.point.has_value())
+      errors.push_back(v.at(path, m.point ? "`point` belongs to a displacement measure"
+                                          : "a displacement measure needs `point`, the probe's undeformed position"));
     if (!m.body.empty() && std::find(body_names.begin(), body_names.end(), m.body) == body_names.end())
       errors.push_back(v.at(path + ".body", fmt::format("no body named '{}'", m.body)));
     if ((m.kind == "field_max" || m.kind == "field_min") && m.field.empty())

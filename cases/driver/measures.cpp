@@ -75,7 +75,8 @@ std::map<std::string, double> evaluate(const std::vector<scene::MeasureSettings>
                                        const mpm::Solver& solver, const RunRecord& record) {
   std::map<std::string, double> values;
   for (const auto& m : measures)
-    if (m.kind != "holes") values[m.name] = measure(m, solver, record);  // holes: from the snapshot (run.cpp)
+    // holes: from the snapshot (run.cpp); displacement: from the probes (probes.hpp)
+    if (m.kind != "holes" && m.kind != "displacement") values[m.name] = measure(m, solver, record);
   return values;
 }
 

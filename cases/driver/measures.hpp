@@ -12,6 +12,11 @@
 //                             final snapshot: front_perforated, D_f, e_f, rear_perforated, D_r,
 //                             e_r, taper, bulge, debris_mass (measurements.json has the rest);
 //                             `body`: the front sheet (default: the panel's)
+//   displacement              the `axis` component of the displacement at `point` (undeformed
+//                             position): in a hybrid's far field (point outside the MPM zone) of
+//                             the nearest node, else the mean over the particles within one grid
+//                             cell of the point, of the nearest particle's body (or `body`);
+//                             followed over time in probes.csv (probes.hpp)
 // `body` restricts a geometric measure to one body. With `surface`, an extent or a diameter's
 // radius reaches from the extreme particle's centre to the surface: half its initial point spacing
 // (V0^(1/3) / 2) further, so that the same measure holds at any resolution.
@@ -38,6 +43,7 @@ struct MeasureSettings {
   bool surface = false;
   std::optional<double> from, to;
   std::array<double, 3> center{};
+  std::optional<std::array<double, 3>> point;  // displacement
 };
 
 TableSpec measure_table();

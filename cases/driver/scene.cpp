@@ -399,7 +399,9 @@ Scene resolve(const toml::table& document, const std::string& file) {
   read_materials(*s.resolved["material"].as_array(), s, c);
   detail::resolve_mesh_files(*s.resolved["body"].as_array(), file, v, c.errors);
   read_bodies(*r["body"].as_array(), s, c);
-  detail::read_panels(*r["panel"].as_array(), s, v, c.errors);
+  const toml::table* far_field = r["far_field"].as_table();
+  detail::read_panels(*r["panel"].as_array(), s, v, c.errors, far_field);
+  if (far_field) detail::read_far_field(*far_field, s, v, c.errors);
   if (s.bodies.empty()) c.error("body", "a scene needs at least one [[body]] or [[panel]]");
   detail::read_refinements(*r["refinement"].as_array(), s, v, c.errors);
   {

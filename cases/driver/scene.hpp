@@ -120,6 +120,16 @@ struct RefinementSettings {
   std::vector<std::size_t> bodies;  // indices into Scene::bodies it applies to
 };
 
+// The hybrid ([far_field]; coupling/): the panel outside `zone` is finite elements.
+struct FarFieldSettings {
+  std::size_t panel = 0;          // index into Scene::panels
+  std::array<double, 4> zone{};   // the MPM zone in plane: x0, y0, x1, y1 (m, on grid planes)
+  std::array<double, 4> extent{}; // the whole panel in plane, cut by its clip (m)
+  int band_elements = 2, core_elements = 4, face_elements = 1;
+  double growth = 1.25, max_element = 0.0, safety = 0.9;
+  bool clamped_edges = false;
+};
+
 struct Scene {
   std::string file;
   std::string title;
@@ -134,6 +144,7 @@ struct Scene {
   std::vector<BodySettings> bodies;  // [[body]] entries, then three per [[panel]]
   std::vector<PanelSettings> panels;
   std::vector<RefinementSettings> refinements;
+  std::optional<FarFieldSettings> far_field;  // none: a pure MPM scene
   toml::table resolved;  // every key, defaults filled, SI values: written next to the output
   std::vector<std::string> warnings;  // likely mistakes that are not errors ("no EOS at 5 km/s")
   std::vector<MeasureSettings> measures;  // [[measure]]: quantities of interest at the end

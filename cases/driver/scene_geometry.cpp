@@ -1,5 +1,7 @@
 #include "cases/driver/scene_geometry.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -79,7 +81,7 @@ MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid) {
 }
 
 void read_panels(const toml::array& panels, Scene& s, const Validated& v,
-                 std::vector<Diagnostic>& errors) {
+                 std::vector<Diagnostic>& errors, const toml::table* far_field) {
   auto error = [&](const std::string& key, std::string message) {
     errors.push_back(v.at(key, std::move(message)));
   };
@@ -113,10 +115,31 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
                                                   "expected a wall thickness below D_hc / {}",
                                                   widest, p.double_walls ? " (double walls)" : "",
                                                   p.cell_diameter, p.double_walls ? 4 : 2));
-    const std::optional<BoxShape> clip = clip_of(t);
+    std::optional<BoxShape> clip = clip_of(t);
+    const double bottom = p.top - p.front_thickness - p.core_height - p.rear_thickness;
+    // With a far field, only the zone is material points (the rest is finite elements).
+    if (far_field && text(*far_field, "panel") == p.name) {
+      const auto zl = vec<2>(*(*far_field)["zone"].as_table(), "lower");
+      const auto zu = vec<2>(*(*far_field)["zone"].as_table(), "upper");
+      BoxShape zone{{zl[0], zl[1], bottom}, {zu[0], zu[1], p.top}};
+      if (clip)
+        for (int d = 0; d < 3; ++d) {
+          zone.lower[d] = std::max(zone.lower[d], clip->lower[d]);
+          zone.upper[d] = std::min(zone.upper[d], clip->upper[d]);
+        }
+      // The far field's extent: the panel cut by its own clip.
+      FarFieldSettings f;
+      f.extent = {p.lower[0], p.lower[1], p.upper[0], p.upper[1]};
+      if (clip)
+        f.extent = {std::max(f.extent[0], clip->lower[0]), std::max(f.extent[1], clip->lower[1]),
+                    std::min(f.extent[2], clip->upper[0]), std::min(f.extent[3], clip->upper[1])};
+      f.panel = s.panels.size();
+      f.zone = {zl[0], zl[1], zu[0], zu[1]};
+      s.far_field = f;
+      clip = zone;
+    }
 
     // The extent and layers, cut by the clip box, must lie in the grid.
-    const double bottom = p.top - p.front_thickness - p.core_height - p.rear_thickness;
     Vec3 lo{p.lower[0], p.lower[1], bottom}, hi{p.upper[0], p.upper[1], p.top};
     if (clip)
       for (int d = 0; d < 3; ++d) {
@@ -155,6 +178,57 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
       s.bodies.push_back(b);
     }
     s.panels.push_back(p);
+  }
+}
+
+void read_far_field(const toml::table& t, Scene& s, const Validated& v,
+                    std::vector<Diagnostic>& errors) {
+  auto error = [&](const std::string& key, std::string message) {
+    errors.push_back(v.at("far_field." + key, std::move(message)));
+  };
+  if (!s.far_field) {
+    std::string names;
+    for (const auto& p : s.panels) names += (names.empty() ? "'" : ", '") + p.name + "'";
+    error("panel", fmt::format("no [[panel]] named '{}'; panels: {}", text(t, "panel"),
+                               names.empty() ? "none" : names));
+    return;
+  }
+  FarFieldSettings& f = *s.far_field;
+  const PanelSettings& p = s.panels[f.panel];
+  f.band_elements = static_cast<int>(t["band_elements"].value<std::int64_t>().value());
+  f.core_elements = static_cast<int>(t["core_elements"].value<std::int64_t>().value());
+  f.face_elements = static_cast<int>(t["face_elements"].value<std::int64_t>().value());
+  f.growth = number(t, "growth");
+  f.safety = number(t, "safety");
+  f.clamped_edges = text(t, "edges") == "clamped";
+  const double h = s.grid.cell_size;
+  f.max_element = t["max_element"].value<double>().value_or(6.0 * std::min(p.front_thickness, p.rear_thickness));
+  s.resolved["far_field"].as_table()->insert_or_assign("max_element", f.max_element);
+  if (f.max_element < h)
+    error("max_element", fmt::format("{} m is smaller than a grid cell ({} m): the far field's elements are "
+                                     "at least one cell long", f.max_element, h));
+  if (p.double_walls)
+    error("panel", fmt::format("panel '{}' has double walls; the far field's homogenised core has closed forms "
+                               "for single walls only", p.name));
+  for (int d = 0; d < 2; ++d) {
+    const double z0 = f.zone[d], z1 = f.zone[2 + d], a = f.extent[d], b = f.extent[2 + d];
+    if (!(a <= z0 && z0 < z1 && z1 <= b)) {
+      error("zone", fmt::format("the zone's {} range [{}, {}] m must lie inside the panel's [{}, {}] m "
+                                "(its extent cut by its clip)", "xy"[d], z0, z1, a, b));
+      continue;
+    }
+    for (double z : {z0, z1}) {
+      const double cells = (z - s.grid.lower[d]) / h;
+      if (std::abs(cells - std::round(cells)) > 1e-9)
+        error("zone", fmt::format("the zone's {} bound {} m is not on a grid plane (grid lower {} m, cell {} m): "
+                                  "the interface nodes must be grid nodes", "xy"[d], z, s.grid.lower[d], h));
+    }
+    // The band's nodes tie to grid nodes: the grid must hold the zone and the band.
+    const double lo = std::max(a, z0 - f.band_elements * h), hi = std::min(b, z1 + f.band_elements * h);
+    if (lo < s.grid.lower[d] - 1e-9 * h || hi > s.grid.upper[d] + 1e-9 * h)
+      error("zone", fmt::format("the zone and its band of {} cells reach [{}, {}] m along {}, outside the grid "
+                                "[{}, {}] m: the band's far-field nodes are tied to grid nodes",
+                                f.band_elements, lo, hi, "xy"[d], s.grid.lower[d], s.grid.upper[d]));
   }
 }
 

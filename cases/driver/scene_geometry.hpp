@@ -20,9 +20,15 @@ std::optional<std::size_t> find_material(const Scene& s, const std::string& name
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
                         std::vector<Diagnostic>& errors);
 MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid);
-// Appends <panel>.front, .core and .rear to s.bodies (after the [[body]] entries).
+// Appends <panel>.front, .core and .rear to s.bodies (after the [[body]] entries). The panel a
+// [far_field] table names (`far_field`, may be null) is material points in its zone only.
 void read_panels(const toml::array& panels, Scene& s, const Validated& v,
-                 std::vector<Diagnostic>& errors);
+                 std::vector<Diagnostic>& errors, const toml::table* far_field);
+// Fills s.far_field from the [far_field] table (after read_panels): the panel it names, its zone
+// inside the panel and on grid planes, the grid holding the zone and its band. Records the
+// default max_element in s.resolved.
+void read_far_field(const toml::table& far_field, Scene& s, const Validated& v,
+                    std::vector<Diagnostic>& errors);
 void read_refinements(const toml::array& zones, Scene& s, const Validated& v,
                       std::vector<Diagnostic>& errors);
 

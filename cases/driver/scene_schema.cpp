@@ -214,6 +214,37 @@ TableSpec panel_table() {
   return t;
 }
 
+// The hybrid (coupling/): the panel outside an in-plane zone as finite elements.
+TableSpec far_field_table() {
+  TableSpec zone{.name = "zone",
+                 .doc = "The MPM zone in plane: the part of the panel that is material points. Its "
+                        "bounds lie on grid planes; the grid holds it and the band beyond it.",
+                 .required = true};
+  zone.vector_required("lower", dims::length, "x, y of the zone's lower corner", 2)
+      .vector_required("upper", dims::length, "x, y of the zone's upper corner", 2);
+  TableSpec t{.name = "far_field",
+              .doc = "The hybrid: the named [[panel]] is material points inside `zone` and finite "
+                     "elements (fem/: facesheets of solid bricks, the core a homogenised orthotropic "
+                     "solid, small-strain elastic with the materials' E, nu and density) over the rest "
+                     "of its in-plane extent (cut by its clip). Both share the grid nodes of a band "
+                     "around the zone and advance with one time step. Absent: nothing of fem/ is built."};
+  t.string_required("panel", "The [[panel]] whose far field this is")
+      .table(zone)
+      .integer("band_elements", closed(1, 16), 2,
+               "Elements one grid cell wide beyond the zone, tied to grid nodes (the interface band)")
+      .number("growth", closed(1, 2), 1.25, "Ratio of neighbouring element lengths beyond the band")
+      .optional_quantity("max_element", dims::length, positive(),
+                         "Largest in-plane element length (default: 6 times the thinner facesheet; "
+                         "trilinear facesheets stiffen in bending as (length / thickness)^2)")
+      .integer("core_elements", closed(1, 64), 4, "Elements through the core height")
+      .integer("face_elements", closed(1, 8), 1, "Elements through each facesheet")
+      .choice("edges", {"free", "clamped"}, "free",
+              "The panel's outer edges (sides on a [[boundary]] plane take that condition instead)")
+      .number("safety", left_open(0, 1), 0.9,
+              "Fraction of the far field's computed stable step it may take");
+  return t;
+}
+
 // Zones where bodies are sampled with more points per cell (paper Fig. 4).
 TableSpec refinement_table() {
   TableSpec box{.name = "box", .doc = "An axis-aligned box zone."};
@@ -251,6 +282,7 @@ TableSpec make_schema() {
       .table(body_table())
       .table(panel_table())
       .table(refinement_table())
+      .table(far_field_table())
       .table(measure_table());
   return root;
 }

@@ -1,0 +1,92 @@
+// The [far_field] table: a valid hybrid resolves (the panel's material points cut to the zone, the
+// default element length recorded), and each way it can be wrong is a located scene error.
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "cases/driver/scene.hpp"
+
+namespace hvi::scene {
+namespace {
+
+std::string small_hybrid() {
+  std::ifstream in(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Diagnostic error_for(const std::vector<std::string>& overrides, const std::string& key) {
+  try {
+    parse_scene(small_hybrid(), "small_hybrid.toml", overrides);
+  } catch (const SceneError& e) {
+    for (const auto& d : e.diagnostics())
+      if (d.key == key) return d;
+    ADD_FAILURE() << "no diagnostic for " << key << "; first: " << e.diagnostics().front().text();
+    return {};
+  }
+  ADD_FAILURE() << "scene was accepted";
+  return {};
+}
+
+TEST(SceneFarField, ResolvesThePanelZoneAndDefaults) {
+  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml");
+  ASSERT_TRUE(s.far_field.has_value());
+  const FarFieldSettings& f = *s.far_field;
+  EXPECT_EQ(s.panels[f.panel].name, "panel");
+  // The panel's extent cut by its clip (the quarter), and the zone.
+  EXPECT_DOUBLE_EQ(f.extent[0], 0.0);
+  EXPECT_DOUBLE_EQ(f.extent[2], 10e-3);
+  EXPECT_DOUBLE_EQ(f.zone[2], 3e-3);
+  EXPECT_EQ(f.band_elements, 2);
+  EXPECT_FALSE(f.clamped_edges);
+  // Default largest element: 6 x the thinner facesheet (0.5 mm), written to the resolved scene.
+  EXPECT_DOUBLE_EQ(f.max_element, 3e-3);
+  EXPECT_DOUBLE_EQ(s.resolved["far_field"]["max_element"].value_or(0.0), 3e-3);
+  // The panel's bodies are material points in the zone only: their clip is the zone in plane.
+  for (const auto& b : s.bodies) {
+    if (b.name.rfind("panel.", 0) != 0) continue;
+    ASSERT_TRUE(b.clip.has_value()) << b.name;
+    EXPECT_DOUBLE_EQ(b.clip->upper[0], 3e-3) << b.name;
+    EXPECT_DOUBLE_EQ(b.clip->upper[1], 3e-3) << b.name;
+    EXPECT_DOUBLE_EQ(b.clip->lower[0], 0.0) << b.name;
+  }
+}
+
+TEST(SceneFarField, WithoutTheTableThereIsNoFarField) {
+  std::string text = small_hybrid();
+  const auto from = text.find("\n[far_field]"), to = text.find("\n[[measure]]");
+  text.erase(from, to - from);
+  const Scene s = parse_scene(text, "small_hybrid.toml", {"grid.upper=[\"11 mm\", \"11 mm\", \"3 mm\"]"});
+  EXPECT_FALSE(s.far_field.has_value());
+  EXPECT_FALSE(s.resolved.contains("far_field"));
+}
+
+TEST(SceneFarField, ErrorsNameTheKey) {
+  Diagnostic d = error_for({"far_field.panel=plate"}, "far_field.panel");
+  EXPECT_NE(d.message.find("no [[panel]] named 'plate'; panels: 'panel'"), std::string::npos) << d.message;
+  EXPECT_GT(d.line, 0);
+
+  d = error_for({"far_field.zone.upper=[\"3.2 mm\", \"3 mm\"]"}, "far_field.zone");
+  EXPECT_NE(d.message.find("not on a grid plane"), std::string::npos) << d.message;
+
+  d = error_for({"far_field.zone.upper=[\"12 mm\", \"3 mm\"]"}, "far_field.zone");
+  EXPECT_NE(d.message.find("must lie inside the panel"), std::string::npos) << d.message;
+
+  // The grid ends at 4 mm: a 3 mm zone and 3 band cells of 0.5 mm reach 4.5 mm.
+  d = error_for({"far_field.band_elements=3"}, "far_field.zone");
+  EXPECT_NE(d.message.find("outside the grid"), std::string::npos) << d.message;
+
+  d = error_for({"far_field.max_element=0.2 mm"}, "far_field.max_element");
+  EXPECT_NE(d.message.find("smaller than a grid cell"), std::string::npos) << d.message;
+
+  d = error_for({"panel.panel.double_walls=true"}, "far_field.panel");
+  EXPECT_NE(d.message.find("double walls"), std::string::npos) << d.message;
+
+  d = error_for({"far_field.edges=pinned"}, "far_field.edges");
+  EXPECT_NE(d.message.find("clamped"), std::string::npos) << d.message;
+}
+
+}  // namespace
+}  // namespace hvi::scene
