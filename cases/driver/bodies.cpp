@@ -9,9 +9,7 @@
 
 namespace hvi::driver {
 
-namespace {
-
-geometry::HoneycombPanel to_geometry(const scene::PanelSettings& p) {
+geometry::HoneycombPanel panel_geometry(const scene::PanelSettings& p) {
   geometry::HoneycombPanel g;
   g.front_thickness = p.front_thickness;
   g.rear_thickness = p.rear_thickness;
@@ -29,6 +27,9 @@ geometry::HoneycombPanel to_geometry(const scene::PanelSettings& p) {
   g.double_walls = p.double_walls;
   return g;
 }
+
+namespace {
+
 
 [[noreturn]] void scene_error(const scene::BodySettings& body, const std::string& message) {
   scene::Diagnostic d = body.origin;
@@ -65,7 +66,7 @@ std::unique_ptr<geometry::Solid> uncut_solid(const scene::Scene& scene,
             scene_error(body, fmt::format("{}: {}; nothing is sampled from it", s.file, e.what()));
           }
         } else {
-          const geometry::HoneycombPanel panel = to_geometry(scene.panels[s.panel]);
+          const geometry::HoneycombPanel panel = panel_geometry(scene.panels[s.panel]);
           if (s.part == scene::PanelPart::core)
             return std::make_unique<geometry::HoneycombCore>(panel, panel.core_box());
           const geometry::Bounds b =

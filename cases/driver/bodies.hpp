@@ -5,11 +5,15 @@
 #include <memory>
 
 #include "cases/driver/scene.hpp"
+#include "geometry/honeycomb.hpp"
 #include "geometry/point_set.hpp"
 #include "geometry/sampler.hpp"
 #include "geometry/solid.hpp"
 
 namespace hvi::driver {
+
+// The geometry of a scene's [[panel]] (without its clip).
+geometry::HoneycombPanel panel_geometry(const scene::PanelSettings& panel);
 
 // The body's solid, cut to its clip box. A surface file that is refused (not closed,
 // self-intersecting, inside-out, unreadable) or reaches outside the grid throws

@@ -10,6 +10,7 @@
 //                                                  hole sizes, bulge, debris (measurements.json)
 //   hvi fit CSV_OR_DIR --form front|rear|taper     the dimensional-analysis power laws
 //   hvi report DIR                                 Markdown report with figures (scripts/report.py)
+//   hvi compare RUN_A RUN_B                        two runs' measures and costs side by side
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
 //                                                  a grid of runs, resumable; DIR/sweep.csv
 #include <omp.h>
@@ -24,8 +25,10 @@
 #include "cases/driver/analysis_cli.hpp"
 #include "cases/driver/build_solver.hpp"
 #include "cases/driver/child_run.hpp"
+#include "cases/driver/compare_command.hpp"
 #include "cases/driver/convergence_command.hpp"
 #include "cases/driver/geometry_command.hpp"
+#include "cases/driver/hybrid.hpp"
 #include "cases/driver/run.hpp"
 #include "cases/driver/sweep_command.hpp"
 #include "cases/driver/scene.hpp"
@@ -45,6 +48,7 @@ void print_errors(const hvi::scene::SceneError& e) {
 int check(const std::string& path, const std::vector<std::string>& overrides) {
   const hvi::scene::Scene scene = hvi::scene::load_scene(path, overrides);
   auto solver = hvi::driver::make_solver(scene);
+  const auto hybrid = hvi::driver::make_hybrid(scene, *solver);
   const auto counts = hvi::driver::add_bodies(scene, *solver);
   solver->initialise();
   fmt::print("{}: valid{}\n", path, scene.title.empty() ? "" : " — " + scene.title);
@@ -59,6 +63,10 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
     fmt::print("  material '{}'{}: {} (density {:.4g} kg/m^3, E {:.4g} Pa, nu {})\n", m.name,
                m.library.empty() ? "" : " (library " + m.library + ")", m.effects(), m.models.density,
                m.models.youngs_modulus, m.models.poisson_ratio);
+  if (hybrid)
+    fmt::print("  far field of panel '{}' outside the MPM zone x in [{:.4g}, {:.4g}], y in [{:.4g}, {:.4g}] m: {}\n",
+               scene.panels[scene.far_field->panel].name, scene.far_field->zone[0], scene.far_field->zone[2],
+               scene.far_field->zone[1], scene.far_field->zone[3], hybrid->describe());
   double mass = 0;
   for (double m : solver->particles().mass) mass += m;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
@@ -145,6 +153,11 @@ int main(int argc, char** argv) {
   report_cmd->add_option("dir", report_dir, "Study directory (sweep.csv) or run directory (measurements.csv)")->required();
   report_cmd->add_flag("--no-run-figures", report_no_run_figures, "Skip the per-run top views (quicker for large runs)");
 
+  hvi::driver::CompareOptions compare;
+  auto* compare_cmd = app.add_subcommand("compare", "Two runs side by side: their measures, cost and energy balance (Markdown)");
+  compare_cmd->add_option("run_a", compare.a, "Run directory A")->required();
+  compare_cmd->add_option("run_b", compare.b, "Run directory B")->required();
+
   const auto measure = hvi::driver::add_measure_command(app);
   const auto fit = hvi::driver::add_fit_command(app);
 
@@ -171,6 +184,7 @@ int main(int argc, char** argv) {
       return hvi::driver::run_convergence(convergence);
     }
     if (*report_cmd) return report(report_dir, report_no_run_figures);
+    if (*compare_cmd) return hvi::driver::compare_command(compare);
     if (*sweep_cmd) {
       sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
       return hvi::driver::run_sweep(sweep);

@@ -15,6 +15,8 @@
 #include <toml++/toml.h>
 
 #include "cases/driver/build_solver.hpp"
+#include "cases/driver/hybrid.hpp"
+#include "cases/driver/probes.hpp"
 #include "cases/driver/measure_command.hpp"
 #include "cases/driver/measures.hpp"
 #include "hvi_git_revision.hpp"
@@ -149,13 +151,18 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   std::unique_ptr<mpm::Solver> solver = make_solver(scene);
   std::vector<std::size_t> counts;
   mpm::io::CheckpointExtras extras;
+  std::unique_ptr<Hybrid> hybrid;  // only when the scene names a [far_field]
+  std::unique_ptr<Probes> probes;
   try {
+    hybrid = make_hybrid(scene, *solver);
     if (options.resume) {
       extras = mpm::io::read_checkpoint(dir / "checkpoint.h5", *solver);
     } else {
       counts = add_bodies(scene, *solver);
       solver->initialise();
     }
+    probes = std::make_unique<Probes>(scene, *solver, hybrid.get());
+    if (options.resume) probes->load(extras);
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi: {}: {}\n", scene.file, e.what());
     return input_error;
@@ -171,9 +178,11 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (options.overwrite && !options.resume) {
     for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
                           "run.resumed.json", "failure.h5",
-                          "measurements.json", "measurements.csv", "measure.log", "top_view_front.pgm", "top_view_rear.pgm"})
+                          "measurements.json", "measurements.csv", "measure.log", "top_view_front.pgm", "top_view_rear.pgm",
+                          "far_field.pvd", "probes.csv"})
       fs::remove(dir / f);
     fs::remove_all(dir / "snapshots");
+    fs::remove_all(dir / "far_field");
   }
   fs::create_directories(dir);
   write_text(dir / "scene.resolved.toml", scene::resolved_text(scene));
@@ -182,7 +191,12 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   mpm::Solver& s = *solver;
   mpm::PhaseTimer& timer = s.timer();
   mpm::io::SnapshotWriter snapshots(dir);
-  mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1);
+  mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1, hybrid != nullptr);
+  probes->open(dir, options.resume ? s.step_count() : -1);
+  auto write_snapshots = [&] {
+    snapshots.write(s);
+    if (hybrid) hybrid->write_snapshot(dir, s.step_count(), s.time());
+  };
   Schedule output{scene.output_interval, 0.0}, checkpoints{scene.checkpoint_interval, scene.checkpoint_interval};
   double initial_energy = 0.0;
   RunRecord record;  // what the scene's [[measure]]s need beyond the final state
@@ -190,6 +204,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
 
   if (options.resume) {
     snapshots.resume(s.step_count());
+    if (hybrid) hybrid->resume(dir, s.step_count());
     output.next = extras.at("next_output_time");
     checkpoints.next = extras.at("next_checkpoint_time");
     initial_energy = extras.at("initial_energy");
@@ -204,11 +219,13 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                  scene.materials[scene.bodies[b].material].name);
     fmt::print("  grid {} x {} x {} cells of {:.4g} m; {} threads; first dt {:.4g} s\n", scene.grid.cells[0],
                scene.grid.cells[1], scene.grid.cells[2], scene.grid.cell_size, threads, s.next_time_step());
+    if (hybrid) fmt::print("  {}\n", hybrid->describe());
     const mpm::EnergyReport e0 = s.energy();
     initial_energy = e0.total();
     energy_log.write(s, e0);
+    probes->record(s);
     track(s, record);
-    snapshots.write(s);
+    write_snapshots();
     output.advance(s.time());
   }
 
@@ -216,11 +233,12 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   auto checkpoint = [&] {
     auto t = timer.scope("write checkpoint");
     last_checkpoint_step = s.step_count();
-    mpm::io::write_checkpoint(dir / "checkpoint.h5", s,
-                              {{"next_output_time", output.next},
-                               {"next_checkpoint_time", checkpoints.next},
-                               {"initial_energy", initial_energy},
-                               {"peak_pressure", record.peak_pressure}});
+    mpm::io::CheckpointExtras extras{{"next_output_time", output.next},
+                                     {"next_checkpoint_time", checkpoints.next},
+                                     {"initial_energy", initial_energy},
+                                     {"peak_pressure", record.peak_pressure}};
+    probes->save(extras);
+    mpm::io::write_checkpoint(dir / "checkpoint.h5", s, extras);
   };
   // A checkpoint exists from the start, so a run that fails always leaves one from before.
   if (!options.resume) checkpoint();
@@ -248,6 +266,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
         auto t = timer.scope("energy");
         const mpm::EnergyReport e = s.energy();
         energy_log.write(s, e);
+        probes->record(s);
         track(s, record);
         if (scene.max_energy_growth > 0 && e.total() - initial_energy > scene.max_energy_growth * std::fabs(initial_energy))
           s.fail(s.fastest_particle(),
@@ -258,7 +277,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       }
       if (output.due(s.time()) || last) {
         auto t = timer.scope("write snapshots");
-        snapshots.write(s);
+        write_snapshots();
         output.advance(s.time());
       }
       if (checkpoints.due(s.time())) {
@@ -290,14 +309,17 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
              code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
              s.time(), s.step_count(), steps, wall, rate, threads, peak_memory_bytes() / 1e6);
-  fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}; balance {:+.3f}%\n",
-             initial_energy, e.total(), e.kinetic, e.internal, e.dissipated, e.removed, 100 * balance);
+  fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}{}; balance {:+.3f}%\n",
+             initial_energy, e.total(), e.kinetic, e.internal, e.dissipated, e.removed,
+             hybrid ? fmt::format(" + far field kinetic {:.6g} + strain {:.6g}", e.coupled_kinetic, e.coupled_strain) : "",
+             100 * balance);
   fmt::print("  momentum (incl. removed): ({:.6g}, {:.6g}, {:.6g}) kg m/s\n", e.momentum[0] + e.removed_momentum[0],
              e.momentum[1] + e.removed_momentum[1], e.momentum[2] + e.removed_momentum[2]);
   if (s.removed().particles > 0)
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
   record.initial_energy = initial_energy;
   auto measured = evaluate(scene.measures, s, record);
+  measured.merge(probes->values(s));
   for (const auto& [name, value] : measured) fmt::print("  measure {} = {:.8g}\n", name, value);
   fmt::print("\n{}\n", timer.table());
   write_timing(dir, timer);
@@ -331,6 +353,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                       {"removed_particles", s.removed().particles},
                       {"removed_mass", s.removed().mass},
                       {"status", status}};
+  if (hybrid) {
+    summary.insert("far_field_nodes", static_cast<std::int64_t>(hybrid->far_field().node_count()));
+    summary.insert("far_field_elements", static_cast<std::int64_t>(hybrid->far_field().cell_count()));
+  }
   toml::table measures;
   for (const auto& [name, value] : measured) measures.insert(name, value);
   summary.insert("measures", measures);

@@ -1,0 +1,78 @@
+#include "cases/driver/compare_command.hpp"
+
+#include <cmath>
+#include <optional>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "cases/driver/run.hpp"
+
+namespace hvi::driver {
+
+namespace {
+
+toml::table read_summary(const std::filesystem::path& run) {
+  const auto file = run / "summary.toml";
+  if (!std::filesystem::exists(file))
+    throw std::invalid_argument(fmt::format("{} holds no summary.toml: not a finished hvi run", run.string()));
+  try {
+    return toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw std::invalid_argument(fmt::format("{}: {}", file.string(), e.description()));
+  }
+}
+
+std::optional<double> number(const toml::table& t, const std::string& path) {
+  return t.at_path(path).value<double>();
+}
+
+std::string cell(std::optional<double> v) {
+  if (!v) return "—";
+  if (std::isnan(*v)) return "nan";
+  return fmt::format("{:.6g}", *v);
+}
+
+// B relative to A, in percent; only where both are numbers and A is not zero.
+std::string difference(std::optional<double> a, std::optional<double> b) {
+  if (!a || !b || !std::isfinite(*a) || !std::isfinite(*b) || *a == 0.0) return "";
+  return fmt::format("{:+.2f}%", 100.0 * (*b - *a) / std::abs(*a));
+}
+
+}  // namespace
+
+std::string compare_runs(const CompareOptions& options) {
+  const toml::table a = read_summary(options.a), b = read_summary(options.b);
+  std::string out = fmt::format("| quantity | A: {} | B: {} | B - A |\n|---|---|---|---|\n", options.a.string(),
+                                options.b.string());
+  auto row = [&](const std::string& name, std::optional<double> x, std::optional<double> y) {
+    out += fmt::format("| {} | {} | {} | {} |\n", name, cell(x), cell(y), difference(x, y));
+  };
+  out += fmt::format("| status | {} | {} | |\n", a["status"].value_or(std::string("?")),
+                     b["status"].value_or(std::string("?")));
+  std::set<std::string> measures;
+  for (const auto* t : {&a, &b})
+    if (const auto* m = (*t)["measures"].as_table())
+      for (const auto& [key, value] : *m) measures.insert(std::string(key.str()));
+  for (const auto& m : measures) row(m, number(a, "measures." + m), number(b, "measures." + m));
+  row("time (s)", number(a, "time"), number(b, "time"));
+  row("particles", number(a, "particles"), number(b, "particles"));
+  row("far-field nodes", number(a, "far_field_nodes"), number(b, "far_field_nodes"));
+  row("steps", number(a, "steps"), number(b, "steps"));
+  row("threads", number(a, "threads"), number(b, "threads"));
+  row("wall time (s)", number(a, "wall_seconds"), number(b, "wall_seconds"));
+  row("particle-steps/s", number(a, "particle_steps_per_second"), number(b, "particle_steps_per_second"));
+  auto mb = [](std::optional<double> bytes) { return bytes ? std::optional<double>(*bytes / 1e6) : std::nullopt; };
+  row("peak memory (MB)", mb(number(a, "peak_memory_bytes")), mb(number(b, "peak_memory_bytes")));
+  row("energy balance", number(a, "energy_balance"), number(b, "energy_balance"));
+  return out;
+}
+
+int compare_command(const CompareOptions& options) {
+  fmt::print("{}", compare_runs(options));
+  return ExitCode::success;
+}
+
+}  // namespace hvi::driver

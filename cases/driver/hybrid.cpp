@@ -1,0 +1,121 @@
+#include "cases/driver/hybrid.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "cases/driver/bodies.hpp"
+#include "coupling/panel_far_field.hpp"
+
+namespace hvi::driver {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body) {
+  const auto& m = s.materials[s.bodies[body].material].models;
+  return {m.youngs_modulus, m.poisson_ratio, m.density};
+}
+
+// The body index of part `part` (0 front, 1 core, 2 rear) of panel `panel`.
+std::size_t panel_body(const scene::Scene& s, std::size_t panel, int part) {
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    if (const auto* p = std::get_if<scene::PanelPart>(&s.bodies[b].shape))
+      if (p->panel == panel && static_cast<int>(p->part) == part) return b;
+  throw std::logic_error("panel body not found");
+}
+
+// Components of far-field node x held at zero: the scene's boundary planes (a node on or beyond
+// one takes its condition, as grid nodes do) and clamped outer edges not on such a plane.
+unsigned conditions(const double* x, const scene::Scene& s, const scene::FarFieldSettings& f, double tol) {
+  unsigned fixed = 0;
+  bool on_plane[2][2] = {{false, false}, {false, false}};  // [axis][upper side]
+  for (const auto& b : s.boundaries) {
+    const bool beyond = b.lower_face ? x[b.axis] <= b.position + tol : x[b.axis] >= b.position - tol;
+    if (beyond) fixed |= b.type == "fixed" ? 7u : 1u << b.axis;
+    if (b.axis < 2)
+      for (int side = 0; side < 2; ++side)
+        if (std::abs(f.extent[2 * side + b.axis] - b.position) <= tol) on_plane[b.axis][side] = true;
+  }
+  if (f.clamped_edges)
+    for (int d = 0; d < 2; ++d)
+      for (int side = 0; side < 2; ++side)
+        if (!on_plane[d][side] && std::abs(x[d] - f.extent[2 * side + d]) <= tol) fixed = 7u;
+  return fixed;
+}
+
+}  // namespace
+
+Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
+  const scene::FarFieldSettings& f = *scene.far_field;
+  geometry::HoneycombPanel panel = panel_geometry(scene.panels[f.panel]);
+  panel.lower = {f.extent[0], f.extent[1]};
+  panel.upper = {f.extent[2], f.extent[3]};
+  coupling::PanelFarFieldSpec spec;
+  spec.front = solid(scene, panel_body(scene, f.panel, 0));
+  spec.core_wall = solid(scene, panel_body(scene, f.panel, 1));
+  spec.rear = solid(scene, panel_body(scene, f.panel, 2));
+  spec.zone = f.zone;
+  spec.band_elements = f.band_elements;
+  spec.ratio = f.growth;
+  spec.max_element = f.max_element;
+  spec.core_elements = f.core_elements;
+  spec.face_elements = f.face_elements;
+  mpm::GridGeometry grid;
+  grid.origin = scene.grid.lower;
+  grid.cell_size = scene.grid.cell_size;
+  grid.cells = scene.grid.cells;
+  far_field_ = std::make_unique<fem::FarField>(coupling::panel_far_field_mesh(panel, spec, grid), 1);
+  const auto x = far_field_->reference_positions();
+  const double tol = 1e-9 * scene.grid.cell_size;
+  for (std::size_t a = 0; a < far_field_->node_count(); ++a)
+    if (const unsigned c = conditions(&x[3 * a], scene, f, tol)) {
+      far_field_->fix(a, c);
+      ++fixed_nodes_;
+    }
+  coupling_ = std::make_unique<coupling::FarFieldCoupling>(*far_field_, grid, coupling::panel_interface_band(spec, grid),
+                                                           scene.grid.flip, f.safety);
+  solver.add_coupling(coupling_.get());
+}
+
+std::string Hybrid::describe() const {
+  return fmt::format("far field: {} nodes, {} elements (trilinear), {} tied to grid nodes ({} exactly), {} with "
+                     "conditions; stable step {:.4g} s; {:.1f} MB",
+                     far_field_->node_count(), far_field_->cell_count(), coupling_->tied_node_count(),
+                     coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),
+                     far_field_->bytes() / 1e6);
+}
+
+void Hybrid::write_snapshot(const fs::path& dir, std::int64_t step, double time) {
+  fs::create_directories(dir / "far_field");
+  const std::string file = fmt::format("far_field/far_field_{:06d}.vtu", step);
+  far_field_->write_vtu((dir / file).string());
+  snapshots_.emplace_back(time, file);
+  fem::FarField::write_pvd((dir / "far_field.pvd").string(), snapshots_);
+}
+
+void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
+  // far_field.pvd lists <DataSet timestep="t" ... file="far_field/far_field_<step>.vtu"/>.
+  std::ifstream in(dir / "far_field.pvd");
+  const std::regex entry(R"re(timestep="([^"]+)".*file="(far_field/far_field_(\d+)\.vtu)")re");
+  std::string line;
+  std::smatch m;
+  snapshots_.clear();
+  while (std::getline(in, line))
+    if (std::regex_search(line, m, entry)) {
+      if (std::stoll(m[3].str()) <= last_step)
+        snapshots_.emplace_back(std::stod(m[1].str()), m[2].str());
+      else
+        fs::remove(dir / m[2].str());
+    }
+}
+
+std::unique_ptr<Hybrid> make_hybrid(const scene::Scene& scene, mpm::Solver& solver) {
+  if (!scene.far_field) return nullptr;
+  return std::make_unique<Hybrid>(scene, solver);
+}
+
+}  // namespace hvi::driver
