@@ -189,8 +189,9 @@ Measurements measure_run(const MeasureOptions& o) {
   // Taper, eq. (12).
   out.core_height = o.core_height;
   if (!out.core_height && info.panels.size() == 1) out.core_height = info.panels[0].core_height;
+  // (Not when a sheet has nothing attached left to measure: its hole has no size.)
   if (out.front && out.rear && out.front->hole.perforated && out.rear->hole.perforated &&
-      out.core_height)
+      out.front->hole.resolution > 0 && out.rear->hole.resolution > 0 && out.core_height)
     out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
 
   // Debris behind the last sheet's back face (particle centres sit half a spacing inside it).

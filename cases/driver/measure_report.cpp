@@ -2,6 +2,7 @@
 // on request, the top views as PGM images.
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -192,8 +193,10 @@ std::vector<std::pair<std::string, double>> headline_quantities(const Measuremen
     q.emplace_back(fmt::format("{}_perforated", which), s->hole.perforated ? 1.0 : 0.0);
     if (!s->hole.perforated) return;
     const char c = which[0];
-    q.emplace_back(fmt::format("D_{}", c), s->hole.D);
-    q.emplace_back(fmt::format("e_{}", c), s->hole.eccentricity);
+    // Nothing of the sheet left attached (a hybrid's zone torn away whole): no size to give.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    q.emplace_back(fmt::format("D_{}", c), s->hole.resolution > 0 ? s->hole.D : nan);
+    q.emplace_back(fmt::format("e_{}", c), s->hole.resolution > 0 ? s->hole.eccentricity : nan);
   };
   sheet(m.front, "front");
   sheet(m.rear, "rear");

@@ -306,9 +306,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   const mpm::EnergyReport e = s.energy();
   const double balance = initial_energy != 0.0 ? (e.total() - initial_energy) / initial_energy : 0.0;
   const double rate = steps * static_cast<double>(particle_count) / std::max(wall, 1e-9);
+  const std::size_t peak_memory = peak_memory_bytes();  // of the run, before the hole measurement reads snapshots
   fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
              code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
-             s.time(), s.step_count(), steps, wall, rate, threads, peak_memory_bytes() / 1e6);
+             s.time(), s.step_count(), steps, wall, rate, threads, peak_memory / 1e6);
   fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}{}; balance {:+.3f}%\n",
              initial_energy, e.total(), e.kinetic, e.internal, e.dissipated, e.removed,
              hybrid ? fmt::format(" + far field kinetic {:.6g} + strain {:.6g}", e.coupled_kinetic, e.coupled_strain) : "",
@@ -347,7 +348,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                       {"wall_seconds", wall},
                       {"particle_steps_per_second", rate},
                       {"threads", threads},
-                      {"peak_memory_bytes", static_cast<std::int64_t>(peak_memory_bytes())},
+                      {"peak_memory_bytes", static_cast<std::int64_t>(peak_memory)},
                       {"initial_energy", initial_energy},
                       {"energy_balance", balance},
                       {"removed_particles", s.removed().particles},
