@@ -21,12 +21,17 @@ std::unique_ptr<mpm::Material> make_material(const scene::MaterialSettings& m) {
 
 }  // namespace
 
+mpm::GridGeometry grid_geometry(const scene::Scene& scene) {
+  mpm::GridGeometry geometry;
+  geometry.origin = scene.grid.lower;
+  geometry.cell_size = scene.grid.cell_size;
+  geometry.cells = scene.grid.cells;
+  return geometry;
+}
+
 std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
   const auto& g = scene.grid;
-  mpm::GridGeometry geometry;
-  geometry.origin = g.lower;
-  geometry.cell_size = g.cell_size;
-  geometry.cells = g.cells;
+  const mpm::GridGeometry geometry = grid_geometry(scene);
 
   mpm::SolverSettings settings;
   settings.shape = g.shape_function == "gimp"     ? mpm::ShapeFunction::gimp

@@ -8,6 +8,9 @@
 
 namespace hvi::driver {
 
+// The scene's background grid.
+mpm::GridGeometry grid_geometry(const scene::Scene& scene);
+
 // The solver with its grid, conditions and materials, but no particles yet.
 std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cases/driver/bodies.hpp"
+#include "cases/driver/build_solver.hpp"
 #include "coupling/panel_far_field.hpp"
 
 namespace hvi::driver {
@@ -64,10 +65,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   spec.max_element = f.max_element;
   spec.core_elements = f.core_elements;
   spec.face_elements = f.face_elements;
-  mpm::GridGeometry grid;
-  grid.origin = scene.grid.lower;
-  grid.cell_size = scene.grid.cell_size;
-  grid.cells = scene.grid.cells;
+  const mpm::GridGeometry grid = grid_geometry(scene);
   far_field_ = std::make_unique<fem::FarField>(coupling::panel_far_field_mesh(panel, spec, grid), 1);
   const auto x = far_field_->reference_positions();
   const double tol = 1e-9 * scene.grid.cell_size;

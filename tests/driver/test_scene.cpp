@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cases/driver/scene.hpp"
+#include "tests/driver/scene_errors.hpp"
 
 namespace hvi::scene {
 namespace {
@@ -44,19 +45,7 @@ Diagnostic first_error(const std::string& text, const std::vector<std::string>& 
   return {};
 }
 
-// The diagnostic about `key`; fails the test when there is none.
-Diagnostic error_for(const std::string& text, const std::string& key) {
-  try {
-    parse_scene(text, "scene.toml");
-  } catch (const SceneError& e) {
-    for (const auto& d : e.diagnostics())
-      if (d.key == key) return d;
-    ADD_FAILURE() << "no diagnostic for " << key << "; first: " << e.diagnostics().front().text();
-    return {};
-  }
-  ADD_FAILURE() << "scene was accepted";
-  return {};
-}
+using test::error_for;
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);

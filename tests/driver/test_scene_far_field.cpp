@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "cases/driver/scene.hpp"
+#include "tests/driver/scene_errors.hpp"
 
 namespace hvi::scene {
 namespace {
@@ -18,16 +19,7 @@ std::string small_hybrid() {
 }
 
 Diagnostic error_for(const std::vector<std::string>& overrides, const std::string& key) {
-  try {
-    parse_scene(small_hybrid(), "small_hybrid.toml", overrides);
-  } catch (const SceneError& e) {
-    for (const auto& d : e.diagnostics())
-      if (d.key == key) return d;
-    ADD_FAILURE() << "no diagnostic for " << key << "; first: " << e.diagnostics().front().text();
-    return {};
-  }
-  ADD_FAILURE() << "scene was accepted";
-  return {};
+  return test::error_for(small_hybrid(), key, overrides, "small_hybrid.toml");
 }
 
 TEST(SceneFarField, ResolvesThePanelZoneAndDefaults) {
