@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -60,6 +59,7 @@ Probes::Probes(const scene::Scene& scene, const mpm::Solver& solver, const Hybri
       const double h = scene.grid.cell_size;
       for (std::size_t p = 0; p < P.size(); ++p)
         if (P.body[p] == body && distance2(&P.position[3 * p], x) <= std::max(h * h, best)) {
+          probe.slot[P.id[p]] = probe.ids.size();
           probe.ids.push_back(P.id[p]);
           probe.reference.insert(probe.reference.end(), &P.position[3 * p], &P.position[3 * p] + 3);
         }
@@ -89,8 +89,10 @@ void Probes::load(const mpm::io::CheckpointExtras& extras) {
     const auto n = static_cast<std::size_t>(extras.at(key + ".n"));
     p.ids.resize(n);
     p.reference.resize(3 * n);
+    p.slot.clear();
     for (std::size_t k = 0; k < n; ++k) {
       p.ids[k] = static_cast<std::int64_t>(extras.at(fmt::format("{}.{}.id", key, k)));
+      p.slot[p.ids[k]] = k;
       for (int d = 0; d < 3; ++d) p.reference[3 * k + d] = extras.at(fmt::format("{}.{}.x{}", key, k, d));
     }
   }
@@ -136,13 +138,11 @@ std::map<std::string, double> Probes::values(const mpm::Solver& solver) const {
 
 double Probes::value(const Probe& p, const mpm::Solver& solver) const {
   if (p.far_field) return hybrid_->far_field().displacement()[3 * p.node + p.axis];
-  std::unordered_map<std::int64_t, std::size_t> slot;
-  for (std::size_t k = 0; k < p.ids.size(); ++k) slot[p.ids[k]] = k;
   const auto& P = solver.particles();
   double sum = 0;
   std::size_t found = 0;
   for (std::size_t q = 0; q < P.size(); ++q)
-    if (const auto it = slot.find(P.id[q]); it != slot.end()) {
+    if (const auto it = p.slot.find(P.id[q]); it != p.slot.end()) {
       sum += P.position[3 * q + p.axis] - p.reference[3 * it->second + p.axis];
       ++found;
     }

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "cases/driver/hybrid.hpp"
@@ -48,6 +49,7 @@ class Probes {
     std::size_t node = 0;             // far field
     std::vector<std::int64_t> ids;    // particles
     std::vector<double> reference;    // their undeformed positions, 3 per particle
+    std::unordered_map<std::int64_t, std::size_t> slot;  // particle id -> index into ids
     double peak = 0.0;                // of largest magnitude so far
   };
   double value(const Probe& p, const mpm::Solver& solver) const;
