@@ -106,8 +106,9 @@ std::unique_ptr<FitCli> add_fit_command(CLI::App& app) {
   auto f = std::make_unique<FitCli>();
   CLI::App* c = f->command = app.add_subcommand(
       "fit", "Fit the paper's dimensional-analysis power laws (eqs. 15, 18, 21) to measured runs");
-  c->add_option("input", f->options.input,
-                "CSV (one row per run) or a directory of runs with measurements.csv")
+  c->add_option("input", f->options.inputs,
+                "CSVs (one row per run) or directories of runs with measurements.csv; their rows "
+                "are fitted together")
       ->required();
   c->add_option("--form", f->options.form, "front (eq. 15), rear (eq. 18) or taper (eq. 21)")
       ->required()

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include "analysis/dimensional_analysis.hpp"
@@ -16,13 +17,15 @@ int fit_command(const FitOptions& o) {
   Table table;
   FormData data;
   try {
-    table = read_table_or_runs(o.input);
+    for (const auto& input : o.inputs) table.append(read_table_or_runs(input));
     data = build_form(parse_form(o.form), table);
   } catch (const std::exception& e) {  // an unreadable table, missing columns: bad input
     fmt::print(stderr, "hvi fit: {}\n", e.what());
     return ExitCode::input_error;
   }
-  fmt::print("hvi fit {}: {}\n", o.input.string(), data.equation);
+  std::vector<std::string> names;
+  for (const auto& input : o.inputs) names.push_back(input.string());
+  fmt::print("hvi fit {}: {}\n", fmt::join(names, " "), data.equation);
   for (const auto& e : data.excluded) fmt::print("  {}\n", e);
   fmt::print("{} of {} rows fitted\n", data.used.size(), table.rows.size());
   PowerLawFit fit;

@@ -8,7 +8,7 @@
 //   hvi keys                                       every scene key (Markdown)
 //   hvi measure RUN_DIR [--snapshot N|last] [--axis x0,y0] [--resolution R]...
 //                                                  hole sizes, bulge, debris (measurements.json)
-//   hvi fit CSV_OR_DIR --form front|rear|taper     the dimensional-analysis power laws
+//   hvi fit CSV_OR_DIR... --form front|rear|taper  the dimensional-analysis power laws
 //   hvi report DIR                                 Markdown report with figures (scripts/report.py)
 //   hvi compare RUN_A RUN_B                        two runs' measures and costs side by side
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...

@@ -4,6 +4,8 @@
 // byte; the same for a hybrid (a scene with a [far_field]), whose balance holds across the
 // coupling; displacement probes; hvi compare.
 #include <sys/wait.h>
+#include <cmath>
+#include <regex>
 
 #include <filesystem>
 #include <fstream>
@@ -264,6 +266,43 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   EXPECT_NE(t.find("| wall time (s) | 100 | 20 | -80.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| far-field nodes | — | 50 |  |"), std::string::npos) << t;
   EXPECT_EQ(run("compare " + a.string() + " " + (b / "missing").string()), 2);
+}
+
+// hvi fit A B: the rows of several tables are fitted together (the paper fits eq. 18 to the
+// parameter study and the structure study at once). Six exact rows of (D_f - d_p)/d_p =
+// 2 (v_p/c_f)^0.5 (t_f/d_p)^0.3 split over two files, three each: neither file alone leaves a
+// degree of freedom, together they give the coefficients back to round-off.
+TEST(Cli, FitMergesSeveralTables) {
+  const fs::path a = scratch("fit_a.csv"), b = scratch("fit_b.csv");
+  auto rows = [](const std::vector<std::pair<double, double>>& vd) {
+    std::ostringstream csv;
+    csv.precision(17);
+    csv << "run,v_p,d_p,t_f,c_f,D_f\n";
+    for (const auto& [v, d] : vd) {
+      const double D = d * (1.0 + 2.0 * std::pow(v / 5000.0, 0.5) * std::pow(0.5e-3 / d, 0.3));
+      csv << "r," << v << ',' << d << ",0.0005,5000," << D << '\n';
+    }
+    return csv.str();
+  };
+  std::ofstream(a) << rows({{1300, 2e-3}, {2200, 4e-3}, {4500, 8e-3}});
+  std::ofstream(b) << rows({{2900, 2e-3}, {3600, 6e-3}, {1800, 8e-3}});
+  const fs::path json = scratch("fit_merged.json");
+  const fs::path out = scratch("fit_merged.txt");
+  ASSERT_EQ(std::system((hvi + " fit " + a.string() + " " + b.string() + " --form front --json " +
+                         json.string() + " > " + out.string()).c_str()),
+            0);
+  const std::string t = read(out);
+  EXPECT_NE(t.find("6 of 6 rows fitted"), std::string::npos) << t;
+  const std::string j = read(json);
+  auto value = [&j](const std::string& name) {
+    std::smatch m;
+    const std::regex re("\"" + name + "\"\\s*:\\s*\\{[^}]*\"value\"\\s*:\\s*([-+0-9.eE]+)");
+    return std::regex_search(j, m, re) ? std::stod(m[1]) : NAN;
+  };
+  EXPECT_NEAR(value("a0"), 2.0, 1e-9) << j;
+  EXPECT_NEAR(value("a1"), 0.5, 1e-9) << j;
+  EXPECT_NEAR(value("a2"), 0.3, 1e-9) << j;
+  EXPECT_EQ(run("fit " + a.string() + " --form front"), 2);  // 3 rows, 3 parameters: no dof
 }
 
 }  // namespace
