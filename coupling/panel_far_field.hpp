@@ -26,7 +26,7 @@ struct PanelFarFieldSpec {
   int band_elements = 2;         // grid-cell-wide elements beyond the zone
   double ratio = 1.25;           // growth of the element length beyond them
   double max_element = 0;        // m; 0: 6 times the thinner facesheet
-  int core_elements = 4;         // through the core height
+  int core_elements = 8;         // through the core height
   int face_elements = 1;         // through each facesheet
 };
 

@@ -125,7 +125,7 @@ struct FarFieldSettings {
   std::size_t panel = 0;          // index into Scene::panels
   std::array<double, 4> zone{};   // the MPM zone in plane: x0, y0, x1, y1 (m, on grid planes)
   std::array<double, 4> extent{}; // the whole panel in plane, cut by its clip (m)
-  int band_elements = 2, core_elements = 4, face_elements = 1;
+  int band_elements = 2, core_elements = 8, face_elements = 1;
   double growth = 1.25, max_element = 0.0, safety = 0.9;
   bool clamped_edges = false;
 };
