@@ -236,7 +236,9 @@ TableSpec far_field_table() {
       .optional_quantity("max_element", dims::length, positive(),
                          "Largest in-plane element length (default: 6 times the thinner facesheet; "
                          "trilinear facesheets stiffen in bending as (length / thickness)^2)")
-      .integer("core_elements", closed(1, 64), 8, "Elements through the core height (4 deflected 17% less than pure MPM 20 mm from an impact, 8 deflected 11% less; README)")
+      .integer("core_elements", closed(1, 64), 8,
+               "Elements through the core height (4 deflected 17% less than pure MPM 20 mm from "
+               "an impact, 8 deflected 11% less; README)")
       .integer("face_elements", closed(1, 8), 1, "Elements through each facesheet")
       .choice("edges", {"free", "clamped"}, "free",
               "The panel's outer edges (sides on a [[boundary]] plane take that condition instead)")
