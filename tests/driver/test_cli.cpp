@@ -4,11 +4,11 @@
 // byte; the same for a hybrid (a scene with a [far_field]), whose balance holds across the
 // coupling; displacement probes; hvi compare.
 #include <sys/wait.h>
-#include <cmath>
-#include <regex>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
