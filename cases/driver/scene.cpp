@@ -70,7 +70,10 @@ void read_grid(const toml::table& t, Scene& s, Checker& c) {
     // A whole number of cells: round up (allowing for decimal round-off) and record the result.
     g.cells[d] = static_cast<int>(std::ceil(cells - 1e-9));
     if (cells > 4e6) c.error("grid.upper", fmt::format("{:.3g} cells along {} is more than the grid can index (4e6)", cells, "xyz"[d]));
-    g.upper[d] = g.lower[d] + g.cells[d] * g.cell_size;
+    // Round-off can leave the snapped bound a hair (< 1e-9 cell) short of the requested one (a
+    // cell of 0.4 mm / sqrt(2)^2 = 0.19999999999999998 mm over 18 mm): keep the requested bound
+    // then, so what fits the requested grid fits this one.
+    g.upper[d] = std::max(g.lower[d] + g.cells[d] * g.cell_size, g.upper[d]);
   }
   toml::array upper;
   for (double u : g.upper) upper.push_back(u);

@@ -55,6 +55,16 @@ std::string replace(std::string text, const std::string& from, const std::string
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
+// A cell size that divides the extent but for round-off (0.4 mm / sqrt(2)^2, a level of
+// `hvi convergence --ratio 1.41421`) keeps the requested bound rather than falling a hair short,
+// so a body flush with it still fits.
+TEST(Scene, GridBoundStaysPutUnderRoundOffOfTheCellSize) {
+  const Scene s = parse_scene(valid, "scene.toml",
+                              {"grid.upper=[\"18 mm\", \"5 mm\", \"5 mm\"]", "grid.cell_size=0.00019999999999999996 m"});
+  EXPECT_EQ(s.grid.cells[0], 90);
+  EXPECT_EQ(s.grid.upper[0], 18e-3);
+}
+
 TEST(Scene, ResolvesDefaultsAndUnits) {
   const Scene s = parse_scene(valid, "scene.toml");
   EXPECT_DOUBLE_EQ(s.end_time, 10e-6);
