@@ -10,6 +10,7 @@ namespace fs = std::filesystem;
 
 namespace {
 const std::string kind_prefix = "kind:";     // attribute kind:<name> = FieldKind
+const std::string output_prefix = "output:";  // attribute output:<name> = 1 if snapshots hold it
 const std::string extra_prefix = "extra:";
 const std::string coupled_prefix = "coupled_";  // datasets of the couplings' state
 }  // namespace
@@ -25,6 +26,7 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
       const int nc = components(f.kind);
       file.write("field_" + f.name, f.data->data(), n, nc);
       file.write_attribute(kind_prefix + f.name, static_cast<std::int64_t>(f.kind));
+      file.write_attribute(output_prefix + f.name, static_cast<std::int64_t>(f.output));
     }
     for (const auto& f : P.int_fields()) file.write("int_" + f.name, f.data->data(), n, 1);
     const SolverState& s = solver.state();
@@ -54,8 +56,10 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
     if (name.rfind("field_", 0) == 0) {
       const std::string field = name.substr(6);
       const auto kind = static_cast<FieldKind>(file.read_integer_attribute(kind_prefix + field));
-      std::vector<double>& data =
-          P.has_field(field) ? P.field(field) : P.add_field(field, kind, "", 0.0, field != "gimp_half_width");
+      // A field the snapshots did not hold (e.g. eos_pressure) stays out of them after a resume.
+      const bool output = file.has_attribute(output_prefix + field) ? file.read_integer_attribute(output_prefix + field) != 0
+                                                                    : field != "gimp_half_width";
+      std::vector<double>& data = P.has_field(field) ? P.field(field) : P.add_field(field, kind, "", 0.0, output);
       data = file.read_doubles(name);
     } else if (name.rfind("int_", 0) == 0) {
       const std::string field = name.substr(4);
