@@ -43,23 +43,17 @@ bool read_summary(const fs::path& dir, Level& level) {
   return true;
 }
 
-// Observed order and Richardson extrapolation from the three finest levels of a halving ladder:
-//   p = log2(|q1 - q0| / |q2 - q1|),  q_ext = q2 + (q2 - q1) / (2^p - 1).
-struct Extrapolation {
-  double order = std::numeric_limits<double>::quiet_NaN();
-  double value = std::numeric_limits<double>::quiet_NaN();
-};
+}  // namespace
 
-Extrapolation richardson(double q0, double q1, double q2) {
-  Extrapolation e;
+Extrapolation richardson(double q0, double q1, double q2, double ratio) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Extrapolation e{nan, nan};
   const double d1 = q1 - q0, d2 = q2 - q1;
   if (d1 == 0.0 || d2 == 0.0 || d1 * d2 < 0.0) return e;  // not (monotonically) converging
-  e.order = std::log2(std::fabs(d1 / d2));
-  if (e.order > 0.0) e.value = q2 + d2 / (std::pow(2.0, e.order) - 1.0);
+  e.order = std::log(std::fabs(d1 / d2)) / std::log(ratio);
+  if (e.order > 0.0) e.value = q2 + d2 / (std::pow(ratio, e.order) - 1.0);
   return e;
 }
-
-}  // namespace
 
 int run_convergence(const ConvergenceOptions& o) {
   const scene::Scene base = scene::load_scene(o.scene, o.overrides);
@@ -68,7 +62,7 @@ int run_convergence(const ConvergenceOptions& o) {
   for (int k = 0; k < o.levels; ++k)
     for (const int ppc : ppcs) {
       Level l;
-      l.cell_size = base.grid.cell_size / std::pow(2.0, k);
+      l.cell_size = base.grid.cell_size / std::pow(o.ratio, k);
       l.particles_per_cell = ppc;
       l.label = ppc ? fmt::format("h{}_ppc{}", k, ppc) : fmt::format("h{}", k);
       levels.push_back(l);
@@ -101,14 +95,14 @@ int run_convergence(const ConvergenceOptions& o) {
   // (at the first particle count of the ladder).
   std::map<std::string, double> reference;
   std::map<std::string, Extrapolation> extrapolated;
-  std::vector<const Level*> halving;
+  std::vector<const Level*> ladder;
   for (const auto& l : levels)
-    if (l.particles_per_cell == ppcs.front()) halving.push_back(&l);
+    if (l.particles_per_cell == ppcs.front()) ladder.push_back(&l);
   for (const auto& [name, value] : levels.back().measures) {
-    if (halving.size() >= 3) {
-      const auto n = halving.size();
-      extrapolated[name] = richardson(halving[n - 3]->measures.at(name), halving[n - 2]->measures.at(name),
-                                      halving[n - 1]->measures.at(name));
+    if (ladder.size() >= 3) {
+      const auto n = ladder.size();
+      extrapolated[name] = richardson(ladder[n - 3]->measures.at(name), ladder[n - 2]->measures.at(name),
+                                      ladder[n - 1]->measures.at(name), o.ratio);
       reference[name] = extrapolated[name].value;
     }
   }
@@ -137,7 +131,8 @@ int run_convergence(const ConvergenceOptions& o) {
   csv.close();
 
   // Markdown: a table per quantity, error and cost side by side.
-  std::string md = fmt::format("# Convergence of {}\n\nCommand: `hvi convergence {} --levels {}`\n\n", o.scene, o.scene, o.levels);
+  std::string md = fmt::format("# Convergence of {}\n\nCommand: `hvi convergence {} --levels {}{}`\n\n", o.scene, o.scene,
+                               o.levels, o.ratio == 2.0 ? "" : fmt::format(" --ratio {:g}", o.ratio));
   for (const auto& entry : levels.back().measures) {
     const std::string& name = entry.first;
     const double ref = reference.count(name) ? reference.at(name) : std::numeric_limits<double>::quiet_NaN();

@@ -130,8 +130,10 @@ int main(int argc, char** argv) {
       "convergence", "Run a scene at a ladder of resolutions: each [[measure]] with its error, wall time and memory");
   convergence_cmd->add_option("scene", convergence.scene, "Scene file (TOML)")->required();
   convergence_cmd->add_option("--out", convergence.out, "Output directory (one run per level inside)")->required();
-  convergence_cmd->add_option("--levels", convergence.levels, "Number of cell sizes, halving from the scene's")
+  convergence_cmd->add_option("--levels", convergence.levels, "Number of cell sizes, from the scene's down")
       ->check(CLI::Range(1, 8));
+  convergence_cmd->add_option("--ratio", convergence.ratio, "Cell size ratio from one level to the next (2: halving; 1.41421 puts a level between)")
+      ->check(CLI::Range(1.05, 4.0));
   convergence_cmd->add_option("--ppc", convergence.particles_per_cell, "Particles per cell per axis to try at each level (e.g. 1 2 3)");
   convergence_cmd->add_option("--reference", convergence.references, "A known value name=value to measure errors against");
   convergence_cmd->add_option("--threads", convergence.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
