@@ -130,11 +130,14 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
 double FarFieldCoupling::stable_time_step() const { return safety_ * far_field_.stable_time_step(); }
 
 mpm::CoupledEnergy FarFieldCoupling::energy() const {
-  return {far_field_.kinetic_energy(), far_field_.strain_energy(), far_field_.momentum()};
+  return {far_field_.kinetic_energy(), far_field_.strain_energy() + far_field_.plastic_work(), far_field_.momentum()};
 }
 
 std::vector<std::pair<std::string, std::span<double>>> FarFieldCoupling::state() {
-  return {{"far_field_displacement", far_field_.displacement()}, {"far_field_velocity", far_field_.velocity()}};
+  auto s = std::vector<std::pair<std::string, std::span<double>>>{
+      {"far_field_displacement", far_field_.displacement()}, {"far_field_velocity", far_field_.velocity()}};
+  for (auto& entry : far_field_.plastic_state()) s.push_back(entry);
+  return s;
 }
 
 }  // namespace hvi::coupling

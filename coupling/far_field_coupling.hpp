@@ -9,7 +9,8 @@
 // the hooks of mpm/grid_coupling.hpp):
 //   m_I += w m_a                      lumped far-field mass      (stage mass_momentum)
 //   p_I += w m_a v_a^(n-1/2)          far-field momentum
-//   f_I += w f_a,  f = -K u^n         far-field internal force   (stage force)
+//   f_I += w f_a,  f = -K u^n         far-field internal force   (stage force; J2 stresses
+//                                      in plastic facesheets, their state committed here)
 // the grid solves v_I, dv_I = dt f_I / m_I once for both sides, and the tied node takes
 //   v_a <- flip (v_a + sum_I w dv_I) + (1 - flip) sum_I w (v_I + dv_I)
 // with the solver's FLIP fraction, and moves as a particle does, with the nodal velocity:
@@ -49,10 +50,12 @@ class FarFieldCoupling : public mpm::GridCoupling {
   void add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double time, double dt) override;
   void take_from_grid(const mpm::SparseGrid& grid, double time, double dt) override;
   double stable_time_step() const override;
-  // The far field's kinetic energy 1/2 sum m v^2 (half-step velocities), strain energy 1/2 u.K u
-  // and momentum; the solver adds them to its energy balance.
+  // The far field's kinetic energy 1/2 sum m v^2 (half-step velocities), its internal energy
+  // (elastic strain energy, 1/2 u.K u when elastic, plus the plastic work of J2 facesheets) and
+  // momentum; the solver adds them to its energy balance.
   mpm::CoupledEnergy energy() const override;
-  // far_field_displacement and far_field_velocity, 3 per node, for checkpoints.
+  // far_field_displacement and far_field_velocity, 3 per node, and with plastic facesheets their
+  // plastic state and work, for checkpoints.
   std::vector<std::pair<std::string, std::span<double>>> state() override;
 
   std::size_t tied_node_count() const { return tied_nodes_; }

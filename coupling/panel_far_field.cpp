@@ -55,12 +55,14 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   auto iso = [](const SolidMaterial& s) { return fem::isotropic(s.youngs_modulus, s.poisson_ratio); };
   const double solidity = fem::honeycomb_core_solidity(panel.cell_diameter, panel.wall_thickness);
   m.layers = {
-      {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density},
+      {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density,
+       spec.rear.hardening},
       {"core", core.lower[2], core.upper[2], spec.core_elements,
        fem::honeycomb_core(spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio, panel.cell_diameter,
                            panel.wall_thickness),
-       spec.core_wall.density * solidity},
-      {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density}};
+       spec.core_wall.density * solidity, std::nullopt},
+      {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density,
+       spec.front.hardening}};
   return m;
 }
 

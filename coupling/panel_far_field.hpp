@@ -8,6 +8,7 @@
 // element up to `max_element`, which defaults to 6 facesheet thicknesses: Q1 faces lock in their
 // own bending as (length / thickness)^2 (tests/fem: 1.4% in frequency at 6.25 t_f).
 #include <array>
+#include <optional>
 
 #include "coupling/far_field_coupling.hpp"
 #include "fem/far_field.hpp"
@@ -18,6 +19,7 @@ namespace hvi::coupling {
 
 struct SolidMaterial {
   double youngs_modulus = 0, poisson_ratio = 0, density = 0;
+  std::optional<mpm::JohnsonCookStrength> hardening;  // J2 plasticity (facesheets); none: elastic
 };
 
 struct PanelFarFieldSpec {

@@ -1,6 +1,9 @@
-// The far field with deal.II: mesh, DoFs numbered node-major, matrix-free stiffness, lumped mass,
-// the element bound of the stable time step, and VTU output.
+// The far field with deal.II: mesh, DoFs numbered node-major, matrix-free stiffness (and J2
+// stresses in plastic layers), lumped mass, the element bound of the stable time step, and VTU
+// output.
 #include "fem/far_field.hpp"
+
+#include "fem/j2_plasticity.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -112,6 +115,117 @@ struct FarField::Impl {
   mutable Vector<double> u, v, work_in, work_out;
   double dt_stable = 0.0;
 
+  // Plasticity, kept only when a layer names it. lane_layer[W cell + lane] is the layer of each
+  // lane of each cell batch (-1: an empty lane); a batch with a plastic lane has a slot in
+  // `plastic` of n_q * W * 7 values: per quadrature point and lane eps_p (Voigt) and alpha.
+  static constexpr unsigned W = VA::size();
+  static constexpr int state_size = 7;
+  std::vector<int> lane_layer, plastic_slot;
+  std::vector<double> plastic;
+  double plastic_work = 0.0;
+  unsigned n_q = 0;
+
+  bool any_plastic() const { return !plastic.empty(); }
+  bool lane_is_plastic(unsigned cell, unsigned lane) const {
+    const int l = lane_layer[W * cell + lane];
+    return l >= 0 && spec.layers[l].plasticity.has_value();
+  }
+  double* state(unsigned cell, unsigned q, unsigned lane) {
+    return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
+  }
+  const double* state(unsigned cell, unsigned q, unsigned lane) const {
+    return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
+  }
+
+  // The symmetric part of grad u, less the committed plastic strain in plastic lanes.
+  Tensor<2, dim, VA> elastic_strain(unsigned cell, unsigned q, const Tensor<2, dim, VA>& grad) const {
+    Tensor<2, dim, VA> e;
+    for (int i = 0; i < dim; ++i)
+      for (int j = 0; j < dim; ++j) e[i][j] = 0.5 * (grad[i][j] + grad[j][i]);
+    if (plastic_slot[cell] < 0) return e;
+    static constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+    for (unsigned lane = 0; lane < W; ++lane) {
+      if (!lane_is_plastic(cell, lane)) continue;
+      const double* ep = state(cell, q, lane);
+      for (int k = 0; k < 6; ++k) {
+        const auto [i, j] = voigt[k];
+        e[i][j][lane] -= ep[k];
+        if (i != j) e[j][i][lane] -= ep[k];
+      }
+    }
+    return e;
+  }
+
+  // -dst = the internal force: stresses returned to the yield surface in plastic lanes, their
+  // state and plastic work committed.
+  template <int p>
+  void plastic_force_kernel(const Vector<double>& src, Vector<double>& dst) {
+    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
+    dst = 0.0;
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+      phi.reinit(cell);
+      phi.gather_evaluate(src, EvaluationFlags::gradients);
+      const auto& C = batch_stiffness[cell];
+      for (unsigned int q = 0; q < phi.n_q_points; ++q) {
+        if (plastic_slot[cell] < 0) {
+          phi.submit_gradient(orthotropic_stress(C, phi.get_gradient(q)), q);
+          continue;
+        }
+        Tensor<2, dim, VA> sigma = orthotropic_stress(C, elastic_strain(cell, q, phi.get_gradient(q)));
+        const VA jxw = phi.JxW(q);
+        for (unsigned lane = 0; lane < W; ++lane) {
+          if (!lane_is_plastic(cell, lane)) continue;
+          double* st = state(cell, q, lane);
+          J2State old;
+          std::copy(st, st + 6, old.plastic_strain.begin());
+          old.alpha = st[6];
+          const Sym trial{sigma[0][0][lane], sigma[1][1][lane], sigma[2][2][lane],
+                          sigma[1][2][lane], sigma[0][2][lane], sigma[0][1][lane]};
+          // C[8] = C66 = mu of the isotropic layer.
+          const J2Update r = j2_return(trial, old, C[8][lane], *spec.layers[lane_layer[W * cell + lane]].plasticity);
+          sigma[0][0][lane] = r.stress[0];
+          sigma[1][1][lane] = r.stress[1];
+          sigma[2][2][lane] = r.stress[2];
+          sigma[1][2][lane] = sigma[2][1][lane] = r.stress[3];
+          sigma[0][2][lane] = sigma[2][0][lane] = r.stress[4];
+          sigma[0][1][lane] = sigma[1][0][lane] = r.stress[5];
+          std::copy(r.state.plastic_strain.begin(), r.state.plastic_strain.end(), st);
+          st[6] = r.state.alpha;
+          plastic_work += r.plastic_work * jxw[lane];
+        }
+        phi.submit_gradient(sigma, q);
+      }
+      phi.integrate_scatter(EvaluationFlags::gradients, dst);
+    }
+  }
+
+  // 1/2 int (eps - eps_p) : C (eps - eps_p) dV with the committed plastic strain.
+  template <int p>
+  double elastic_energy_kernel(const Vector<double>& src) const {
+    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
+    double energy = 0.0;
+    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+      phi.reinit(cell);
+      phi.gather_evaluate(src, EvaluationFlags::gradients);
+      const auto& C = batch_stiffness[cell];
+      for (unsigned int q = 0; q < phi.n_q_points; ++q) {
+        const Tensor<2, dim, VA> e = elastic_strain(cell, q, phi.get_gradient(q));
+        const VA w = 0.5 * scalar_product(orthotropic_stress(C, e), e) * phi.JxW(q);
+        for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane) energy += w[lane];
+      }
+    }
+    return energy;
+  }
+
+  // The internal force's negative, K u when elastic.
+  void internal(const Vector<double>& src, Vector<double>& dst) {
+    if (!any_plastic()) return apply(src, dst);
+    if (spec.degree == 1)
+      plastic_force_kernel<1>(src, dst);
+    else
+      plastic_force_kernel<2>(src, dst);
+  }
+
   template <int p>
   void stiffness_kernel(const Vector<double>& src, Vector<double>& dst) const {
     FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
@@ -154,6 +268,7 @@ struct FarField::Impl {
   void build_mesh();
   void number_nodes();
   void setup_matrix_free();
+  void setup_plasticity();
   double element_bound_time_step() const;
 };
 
@@ -175,6 +290,12 @@ void FarField::Impl::build_mesh() {
       z_layer.push_back(static_cast<types::material_id>(l));
     }
     layer_stiffness.push_back(stiffness(L.elasticity));
+    const auto& C = layer_stiffness.back();
+    auto near = [&](double a, double b) { return std::abs(a - b) <= 1e-9 * C[0]; };
+    const bool isotropic = near(C[0], C[1]) && near(C[0], C[2]) && near(C[3], C[4]) && near(C[3], C[5]) &&
+                           near(C[6], C[8]) && near(C[7], C[8]) && near(2.0 * C[8], C[0] - C[3]);
+    if (L.plasticity && !isotropic)
+      throw std::invalid_argument("far field: layer '" + L.name + "' is plastic but not isotropic (J2 needs an isotropic layer)");
   }
   Table<dim, types::material_id> ids(spec.x_steps.size(), spec.y_steps.size(), z_steps.size());
   double x = spec.lower[0];
@@ -278,6 +399,28 @@ void FarField::Impl::setup_matrix_free() {
   }
 }
 
+void FarField::Impl::setup_plasticity() {
+  const unsigned batches = matrix_free.n_cell_batches();
+  lane_layer.assign(static_cast<std::size_t>(W) * batches, -1);
+  plastic_slot.assign(batches, -1);
+  n_q = static_cast<unsigned>(std::pow(spec.degree + 1, dim));
+  int slots = 0;
+  for (unsigned cell = 0; cell < batches; ++cell) {
+    for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
+      lane_layer[W * cell + lane] = matrix_free.get_cell_iterator(cell, lane)->material_id();
+    for (unsigned lane = 0; lane < W; ++lane)
+      if (lane_is_plastic(cell, lane)) {
+        plastic_slot[cell] = slots++;
+        break;
+      }
+  }
+  plastic.assign(static_cast<std::size_t>(slots) * n_q * W * state_size, 0.0);
+  if (slots == 0) {  // nothing plastic: keep no per-batch tables either
+    lane_layer = {};
+    plastic_slot = {};
+  }
+}
+
 // The largest eigenvalue of M_e^-1 K_e over the elements, each distinct (extent, layer) once.
 double FarField::Impl::element_bound_time_step() const {
   const QGauss<dim> gauss(spec.degree + 1);
@@ -330,6 +473,7 @@ FarField::FarField(const LayeredMesh& mesh, unsigned threads) : impl_(std::make_
   impl_->build_mesh();
   impl_->number_nodes();
   impl_->setup_matrix_free();
+  impl_->setup_plasticity();
   impl_->dt_stable = impl_->element_bound_time_step();
 }
 
@@ -361,15 +505,15 @@ void FarField::apply_stiffness(std::span<const double> u, std::span<double> Ku) 
   std::copy(impl_->work_out.begin(), impl_->work_out.end(), Ku.begin());
 }
 
-void FarField::internal_force(std::span<double> force) const {
+void FarField::internal_force(std::span<double> force) {
   if (force.size() != impl_->u.size()) throw std::invalid_argument("far field: force size");
-  impl_->apply(impl_->u, impl_->work_out);
+  impl_->internal(impl_->u, impl_->work_out);
   for (std::size_t i = 0; i < force.size(); ++i) force[i] = -impl_->work_out[i];
 }
 
 void FarField::step(double dt, std::span<const double> external) {
   auto& I = *impl_;
-  I.apply(I.u, I.work_out);  // K u
+  I.internal(I.u, I.work_out);  // K u when elastic
   const std::size_t nodes = I.mass.size();
   for (std::size_t a = 0; a < nodes; ++a)
     for (int d = 0; d < 3; ++d) {
@@ -395,8 +539,25 @@ double FarField::kinetic_energy(std::span<const double> v) const {
 double FarField::kinetic_energy() const { return kinetic_energy(velocity()); }
 
 double FarField::strain_energy() const {
-  impl_->apply(impl_->u, impl_->work_out);
-  return 0.5 * (impl_->u * impl_->work_out);
+  const auto& I = *impl_;
+  if (I.any_plastic()) return I.spec.degree == 1 ? I.elastic_energy_kernel<1>(I.u) : I.elastic_energy_kernel<2>(I.u);
+  I.apply(I.u, I.work_out);
+  return 0.5 * (I.u * I.work_out);
+}
+
+double FarField::plastic_work() const { return impl_->plastic_work; }
+bool FarField::plastic() const { return impl_->any_plastic(); }
+
+double FarField::max_equivalent_plastic_strain() const {
+  double m = 0.0;
+  for (std::size_t i = Impl::state_size - 1; i < impl_->plastic.size(); i += Impl::state_size)
+    m = std::max(m, impl_->plastic[i]);
+  return m;
+}
+
+std::vector<std::pair<std::string, std::span<double>>> FarField::plastic_state() {
+  if (!impl_->any_plastic()) return {};
+  return {{"far_field_plastic_state", impl_->plastic}, {"far_field_plastic_work", {&impl_->plastic_work, 1}}};
 }
 
 std::array<double, 3> FarField::momentum() const {
@@ -412,7 +573,8 @@ std::size_t FarField::bytes() const {
          I.matrix_free.memory_consumption() +
          4 * I.u.memory_consumption() + I.positions.size() * sizeof(double) +
          I.mass.size() * (sizeof(double) + sizeof(int) + sizeof(unsigned)) +
-         I.batch_stiffness.size() * sizeof(std::array<VA, 9>);
+         I.batch_stiffness.size() * sizeof(std::array<VA, 9>) +
+         I.plastic.size() * sizeof(double) + (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int);
 }
 
 void FarField::write_vtu(const std::string& path) const {
@@ -423,6 +585,18 @@ void FarField::write_vtu(const std::string& path) const {
       dim, DataComponentInterpretation::component_is_part_of_vector);
   out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
   out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
+  Vector<double> alpha;  // per cell: the largest alpha at its quadrature points
+  if (I.any_plastic()) {
+    alpha.reinit(I.triangulation.n_active_cells());
+    for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
+      for (unsigned lane = 0; lane < Impl::W; ++lane) {
+        if (!I.lane_is_plastic(cell, lane)) continue;
+        double m = 0.0;
+        for (unsigned q = 0; q < I.n_q; ++q) m = std::max(m, I.state(cell, q, lane)[6]);
+        alpha[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()] = m;
+      }
+    out.add_data_vector(alpha, "equivalent_plastic_strain", DataOut<dim>::type_cell_data);
+  }
   out.build_patches(I.mapping, I.spec.degree);
   DataOutBase::VtkFlags flags;
   flags.print_date_and_time = false;  // the same state gives the same bytes

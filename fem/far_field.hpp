@@ -1,7 +1,8 @@
 #pragma once
 // The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
 // two elements through its thickness, the core a homogenised orthotropic solid), small-strain
-// linear elasticity (total Lagrangian: every quantity refers to the undeformed mesh), explicit
+// linear elasticity (total Lagrangian: every quantity refers to the undeformed mesh), optionally
+// J2 plasticity in the isotropic layers (fem/j2_plasticity.hpp), explicit
 // central differences with a lumped mass, and a matrix-free stiffness (deal.II MatrixFree /
 // FEEvaluation). deal.II stays behind this header: callers see nodes as plain arrays.
 //
@@ -17,9 +18,11 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/orthotropic.hpp"
+#include "mpm/materials/johnson_cook.hpp"
 
 namespace hvi::fem {
 
@@ -30,6 +33,9 @@ struct Layer {
   int elements = 1;                 // through the thickness
   Orthotropic elasticity;
   double density = 0;  // kg/m^3
+  // J2 plasticity with this hardening curve (its A, B, n; rate and thermal factors 1), for an
+  // isotropic layer only; none: the layer stays elastic and keeps no plastic state.
+  std::optional<mpm::JohnsonCookStrength> plasticity;
 };
 
 struct LayeredMesh {
@@ -77,9 +83,11 @@ class FarField {
   void fix(std::size_t node, unsigned components);
   unsigned fixed(std::size_t node) const;
 
-  // f = -K u at the current displacement, 3 per node (N); `force` must hold 3 * node_count().
-  void internal_force(std::span<double> force) const;
-  // K applied to any nodal vector (N): for tests and energy.
+  // f = -int B^T sigma dV at the current displacement, 3 per node (N); `force` must hold
+  // 3 * node_count(). Elastic: f = -K u. With plastic layers the stress is returned to the yield
+  // surface and the plastic state committed: call it once per step.
+  void internal_force(std::span<double> force);
+  // The elastic K applied to any nodal vector (N): for tests and energy.
   void apply_stiffness(std::span<const double> u, std::span<double> Ku) const;
 
   // One central-difference step of the far field alone: v += dt M^-1 (f_int + f_ext), then
@@ -91,14 +99,25 @@ class FarField {
   // system's is never larger). Computed once from the element matrices, never guessed.
   double stable_time_step() const;
 
-  // Energies (J): kinetic 1/2 sum m v^2 of the current velocities, strain 1/2 u.K u.
+  // Energies (J): kinetic 1/2 sum m v^2 of the current velocities; elastic strain energy
+  // 1/2 int (eps - eps_p) : C (eps - eps_p) dV with the committed plastic strain (1/2 u.K u when
+  // elastic); the plastic work done so far, sum over steps and points of dgamma q JxW.
   double kinetic_energy() const;
   double strain_energy() const;
+  double plastic_work() const;
   double kinetic_energy(std::span<const double> v) const;
   std::array<double, 3> momentum() const;
 
+  // Whether any layer is plastic; the largest equivalent plastic strain at any quadrature point.
+  bool plastic() const;
+  double max_equivalent_plastic_strain() const;
+  // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha) and the
+  // plastic work, for checkpoints; empty when no layer is plastic.
+  std::vector<std::pair<std::string, std::span<double>>> plastic_state();
+
   std::size_t bytes() const;
-  // The mesh and the current displacement and velocity as a VTU file for ParaView.
+  // The mesh and the current displacement and velocity as a VTU file for ParaView (with plastic
+  // layers also each cell's largest equivalent plastic strain).
   void write_vtu(const std::string& path) const;
   // A ParaView collection (.pvd) of VTU files: (time, file relative to the .pvd) per entry.
   static void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

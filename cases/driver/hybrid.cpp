@@ -16,9 +16,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body) {
+// `plastic`: J2 with the material's Johnson-Cook hardening (the scene checked it has one).
+coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body, bool plastic = false) {
   const auto& m = s.materials[s.bodies[body].material].models;
-  return {m.youngs_modulus, m.poisson_ratio, m.density};
+  return {m.youngs_modulus, m.poisson_ratio, m.density, plastic ? m.johnson_cook : std::nullopt};
 }
 
 // The body index of part `part` (0 front, 1 core, 2 rear) of panel `panel`.
@@ -56,9 +57,9 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   panel.lower = {f.extent[0], f.extent[1]};
   panel.upper = {f.extent[2], f.extent[3]};
   coupling::PanelFarFieldSpec spec;
-  spec.front = solid(scene, panel_body(scene, f.panel, 0));
+  spec.front = solid(scene, panel_body(scene, f.panel, 0), f.plastic_faces);
   spec.core_wall = solid(scene, panel_body(scene, f.panel, 1));
-  spec.rear = solid(scene, panel_body(scene, f.panel, 2));
+  spec.rear = solid(scene, panel_body(scene, f.panel, 2), f.plastic_faces);
   spec.zone = f.zone;
   spec.band_elements = f.band_elements;
   spec.ratio = f.growth;
@@ -80,9 +81,10 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
 }
 
 std::string Hybrid::describe() const {
-  return fmt::format("far field: {} nodes, {} elements (trilinear), {} tied to grid nodes ({} exactly), {} with "
+  return fmt::format("far field: {} nodes, {} elements (trilinear{}), {} tied to grid nodes ({} exactly), {} with "
                      "conditions; stable step {:.4g} s; {:.1f} MB",
-                     far_field_->node_count(), far_field_->cell_count(), coupling_->tied_node_count(),
+                     far_field_->node_count(), far_field_->cell_count(),
+                     far_field_->plastic() ? ", J2 facesheets" : "", coupling_->tied_node_count(),
                      coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),
                      far_field_->bytes() / 1e6);
 }

@@ -357,6 +357,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (hybrid) {
     summary.insert("far_field_nodes", static_cast<std::int64_t>(hybrid->far_field().node_count()));
     summary.insert("far_field_elements", static_cast<std::int64_t>(hybrid->far_field().cell_count()));
+    if (hybrid->far_field().plastic()) {  // only when the scene asks for J2 facesheets
+      summary.insert("far_field_max_plastic_strain", hybrid->far_field().max_equivalent_plastic_strain());
+      summary.insert("far_field_plastic_work", hybrid->far_field().plastic_work());
+    }
   }
   toml::table measures;
   for (const auto& [name, value] : measured) measures.insert(name, value);

@@ -128,6 +128,7 @@ struct FarFieldSettings {
   int band_elements = 2, core_elements = 8, face_elements = 1;
   double growth = 1.25, max_element = 0.0, safety = 0.9;
   bool clamped_edges = false;
+  bool plastic_faces = false;  // plasticity = "j2": the facesheets yield (their Johnson-Cook A, B, n)
 };
 
 struct Scene {

@@ -225,7 +225,7 @@ TableSpec far_field_table() {
   TableSpec t{.name = "far_field",
               .doc = "The hybrid: the named [[panel]] is material points inside `zone` and finite "
                      "elements (fem/: facesheets of solid bricks, the core a homogenised orthotropic "
-                     "solid, small-strain elastic with the materials' E, nu and density) over the rest "
+                     "solid, small-strain elastic with the materials' E, nu and density, optionally J2 facesheets) over the rest "
                      "of its in-plane extent (cut by its clip). Both share the grid nodes of a band "
                      "around the zone and advance with one time step. Absent: nothing of fem/ is built."};
   t.string_required("panel", "The [[panel]] whose far field this is")
@@ -240,6 +240,9 @@ TableSpec far_field_table() {
                "Elements through the core height (4 deflected 17% less than pure MPM 20 mm from "
                "an impact, 8 deflected 11% less; README)")
       .integer("face_elements", closed(1, 8), 1, "Elements through each facesheet")
+      .choice("plasticity", {"none", "j2"}, "none",
+              "The far field's facesheets: elastic, or J2 plasticity hardening as their materials' "
+              "Johnson-Cook A + B eps_p^n (rate and thermal factors 1); the core stays elastic")
       .choice("edges", {"free", "clamped"}, "free",
               "The panel's outer edges (sides on a [[boundary]] plane take that condition instead)")
       .number("safety", left_open(0, 1), 0.9,

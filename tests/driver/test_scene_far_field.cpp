@@ -78,6 +78,19 @@ TEST(SceneFarField, ErrorsNameTheKey) {
 
   d = error_for({"far_field.edges=pinned"}, "far_field.edges");
   EXPECT_NE(d.message.find("clamped"), std::string::npos) << d.message;
+
+  // J2 facesheets harden as their material's Johnson-Cook strength: the elastic aluminium has none.
+  d = error_for({"far_field.plasticity=j2"}, "far_field.plasticity");
+  EXPECT_NE(d.message.find("'aluminium' (panel.front) names strength = \"elastic\""), std::string::npos) << d.message;
+}
+
+TEST(SceneFarField, PlasticFacesheetsOnlyWhenNamed) {
+  EXPECT_FALSE(parse_scene(small_hybrid(), "small_hybrid.toml").far_field->plastic_faces);
+  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml",
+                              {"far_field.plasticity=j2", "material.aluminium.library=Al6061",
+                               "material.aluminium.strength=johnson-cook"});
+  EXPECT_TRUE(s.far_field->plastic_faces);
+  EXPECT_EQ(s.resolved["far_field"]["plasticity"].value_or(std::string{}), "j2");
 }
 
 }  // namespace

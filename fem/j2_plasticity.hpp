@@ -1,0 +1,40 @@
+#pragma once
+// J2 (von Mises) plasticity of the far field's facesheets, small strain, at a quadrature point.
+// The strain splits additively, eps = eps_e + eps_p; sigma = lambda tr(eps_e) I + 2 mu eps_e; the
+// yield stress follows the Johnson-Cook hardening curve of the facesheet's material at the
+// reference strain rate and room temperature (the paper's eq. 1 with both factors 1):
+//   sigma_y(alpha) = A + B alpha^n.
+// The far field is the panel away from the impact: its strain rates and heating are small, which
+// is why the rate and thermal factors are left at 1 (README, Far field).
+//
+// Backward-Euler radial return (the closest point on the von Mises cylinder), with the safeguarded
+// Newton solve of mpm/materials/johnson_cook.hpp:
+//   sigma_trial = C (eps - eps_p,n),  s_trial = dev sigma_trial,  q_trial = sqrt(3/2 s:s)
+//   q_trial - 3 mu dgamma = sigma_y(alpha_n + dgamma)            (dgamma = 0 inside the surface)
+//   eps_p,n+1 = eps_p,n + 3/2 dgamma s_trial / q_trial,  alpha_n+1 = alpha_n + dgamma
+//   sigma = p_trial I + (1 - 3 mu dgamma / q_trial) s_trial
+// The plastic work of the step per unit volume is sigma_n+1 : d eps_p = dgamma q_n+1.
+#include <array>
+
+#include "mpm/materials/johnson_cook.hpp"
+
+namespace hvi::fem {
+
+// Symmetric tensors in Voigt order xx, yy, zz, yz, xz, xy, tensor (not engineering) shears.
+using Sym = std::array<double, 6>;
+
+struct J2State {
+  Sym plastic_strain{};
+  double alpha = 0.0;  // equivalent plastic strain, sqrt(2/3 eps_p : eps_p) for radial flow
+};
+
+struct J2Update {
+  Sym stress{};
+  J2State state;
+  double plastic_work = 0.0;  // J/m^3 over the step
+};
+
+// `trial_stress`: C (eps - eps_p,n) of the isotropic material with shear modulus mu.
+J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, const mpm::JohnsonCookStrength& hardening);
+
+}  // namespace hvi::fem
