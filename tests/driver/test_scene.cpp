@@ -1,5 +1,9 @@
 // The real scene declaration: a valid scene resolves with every default filled in, and each class
 // of scene error names the file, line, column and key.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include <gtest/gtest.h>
 
 #include "cases/driver/scene.hpp"
@@ -63,6 +67,22 @@ TEST(Scene, GridBoundStaysPutUnderRoundOffOfTheCellSize) {
                               {"grid.upper=[\"18 mm\", \"5 mm\", \"5 mm\"]", "grid.cell_size=0.00019999999999999996 m"});
   EXPECT_EQ(s.grid.cells[0], 90);
   EXPECT_EQ(s.grid.upper[0], 18e-3);
+}
+
+// Every scene shipped in cases/ resolves without error (the studies there are checked by
+// Sweep.ShippedPaperStudiesResolve; a study file names its `scene = ...`).
+TEST(Scene, EveryShippedSceneResolves) {
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(std::string(HVI_SOURCE_DIR) + "/cases")) {
+    if (entry.path().extension() != ".toml") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    if (text.str().find("\nscene = ") != std::string::npos) continue;
+    EXPECT_NO_THROW(load_scene(entry.path().string(), {})) << entry.path();
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 12);  // demo, verification, stability, hybrid and the paper panels
 }
 
 TEST(Scene, ResolvesDefaultsAndUnits) {
