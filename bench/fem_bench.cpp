@@ -4,8 +4,8 @@
 // interface growing by 1.25 per element up to 3 mm (6 t_f, the Q1 locking rule), the faces one
 // element and the core four elements through the thickness; arguments: the element degree, and 1
 // for J2 facesheets (the cost of far_field.plasticity = "j2": the return at every facesheet
-// quadrature point, elastic or not). Reports node_steps_per_s (nodes x steps / wall time, one
-// thread: the far field runs on the calling thread) and bytes_per_node.
+// quadrature point, elastic or not); run with OMP_NUM_THREADS=1 and 2 (the cell loops run on
+// OpenMP threads). Reports node_steps_per_s (nodes x steps / wall time) and bytes_per_node.
 #include <benchmark/benchmark.h>
 
 #include "fem/far_field.hpp"

@@ -6,11 +6,15 @@
 #include "fem/j2_plasticity.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <stdexcept>
+
+#include <omp.h>
 
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -122,6 +126,7 @@ struct FarField::Impl {
   static constexpr int state_size = 7;
   std::vector<int> lane_layer, plastic_slot;
   std::vector<double> plastic;
+  mutable std::vector<double> batch_sum;  // per cell batch: its share of a sum, added in order
   double plastic_work = 0.0;
   unsigned n_q = 0;
 
@@ -160,9 +165,9 @@ struct FarField::Impl {
   // state and plastic work committed.
   template <int p>
   void plastic_force_kernel(const Vector<double>& src, Vector<double>& dst) {
-    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
     dst = 0.0;
-    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+    std::fill(batch_sum.begin(), batch_sum.end(), 0.0);
+    cell_loop<p>([&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       phi.reinit(cell);
       phi.gather_evaluate(src, EvaluationFlags::gradients);
       const auto& C = batch_stiffness[cell];
@@ -191,29 +196,32 @@ struct FarField::Impl {
           sigma[0][1][lane] = sigma[1][0][lane] = r.stress[5];
           std::copy(r.state.plastic_strain.begin(), r.state.plastic_strain.end(), st);
           st[6] = r.state.alpha;
-          plastic_work += r.plastic_work * jxw[lane];
+          batch_sum[cell] += r.plastic_work * jxw[lane];
         }
         phi.submit_gradient(sigma, q);
       }
       phi.integrate_scatter(EvaluationFlags::gradients, dst);
-    }
+    });
+    for (const double w : batch_sum) plastic_work += w;  // in batch order: the same for any threads
   }
 
   // 1/2 int (eps - eps_p) : C (eps - eps_p) dV with the committed plastic strain.
   template <int p>
   double elastic_energy_kernel(const Vector<double>& src) const {
-    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
-    double energy = 0.0;
-    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+    std::fill(batch_sum.begin(), batch_sum.end(), 0.0);
+    cell_loop<p>([&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       phi.reinit(cell);
       phi.gather_evaluate(src, EvaluationFlags::gradients);
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
         const Tensor<2, dim, VA> e = elastic_strain(cell, q, phi.get_gradient(q));
         const VA w = 0.5 * scalar_product(orthotropic_stress(C, e), e) * phi.JxW(q);
-        for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane) energy += w[lane];
+        for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
+          batch_sum[cell] += w[lane];
       }
-    }
+    });
+    double energy = 0.0;
+    for (const double e : batch_sum) energy += e;
     return energy;
   }
 
@@ -226,18 +234,42 @@ struct FarField::Impl {
       plastic_force_kernel<2>(src, dst);
   }
 
+  // The cell batches in colours: no two batches of a colour share a node, so within a colour
+  // they scatter into disjoint entries and run in parallel (OpenMP), while the colours run in
+  // order. Every entry then receives its contributions in the same order for any thread count:
+  // the far field is bitwise the same on 1 or N threads.
+  std::vector<std::vector<unsigned>> colours;
+
+  // body(phi, batch) for every cell batch, colour by colour, with one FEEvaluation per thread.
+  template <int p, typename Body>
+  void cell_loop(Body&& body) const {
+    if (omp_get_max_threads() == 1 || omp_in_parallel()) {  // the same order, on this thread
+      FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
+      for (const auto& colour : colours)
+        for (const unsigned cell : colour) body(phi, cell);
+      return;
+    }
+#pragma omp parallel
+    {
+      FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
+      for (const auto& colour : colours) {
+#pragma omp for schedule(static)
+        for (std::size_t i = 0; i < colour.size(); ++i) body(phi, colour[i]);
+      }
+    }
+  }
+
   template <int p>
   void stiffness_kernel(const Vector<double>& src, Vector<double>& dst) const {
-    FEEvaluation<dim, p, p + 1, dim, double> phi(matrix_free, 0, 0);
     dst = 0.0;
-    for (unsigned int cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+    cell_loop<p>([&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       phi.reinit(cell);
       phi.gather_evaluate(src, EvaluationFlags::gradients);
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q)
         phi.submit_gradient(orthotropic_stress(C, phi.get_gradient(q)), q);
       phi.integrate_scatter(EvaluationFlags::gradients, dst);
-    }
+    });
   }
 
   // M_a = sum_q rho N_a(x_q) JxW_q with Gauss-Lobatto points (quadrature 1): the row sums of the
@@ -269,6 +301,7 @@ struct FarField::Impl {
   void number_nodes();
   void setup_matrix_free();
   void setup_plasticity();
+  void colour_batches();
   double element_bound_time_step() const;
 };
 
@@ -399,6 +432,29 @@ void FarField::Impl::setup_matrix_free() {
   }
 }
 
+// Greedy colouring: each batch takes the lowest colour none of its nodes has yet.
+void FarField::Impl::colour_batches() {
+  std::vector<std::uint64_t> used(mass.size(), 0);  // per node: the colours of batches touching it
+  std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
+  colours.clear();
+  for (unsigned cell = 0; cell < matrix_free.n_cell_batches(); ++cell) {
+    std::uint64_t taken = 0;
+    std::vector<std::size_t> nodes;
+    for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
+      matrix_free.get_cell_iterator(cell, lane)->get_dof_indices(dofs);
+      for (const auto d : dofs)
+        if (d % 3 == 0) nodes.push_back(d / 3);
+    }
+    for (const auto a : nodes) taken |= used[a];
+    if (~taken == 0) throw std::logic_error("far field: more than 64 colours of cell batches");
+    const int c = std::countr_one(taken);
+    for (const auto a : nodes) used[a] |= std::uint64_t{1} << c;
+    if (static_cast<int>(colours.size()) <= c) colours.resize(c + 1);
+    colours[c].push_back(cell);
+  }
+  batch_sum.assign(matrix_free.n_cell_batches(), 0.0);
+}
+
 void FarField::Impl::setup_plasticity() {
   const unsigned batches = matrix_free.n_cell_batches();
   lane_layer.assign(static_cast<std::size_t>(W) * batches, -1);
@@ -473,6 +529,7 @@ FarField::FarField(const LayeredMesh& mesh, unsigned threads) : impl_(std::make_
   impl_->build_mesh();
   impl_->number_nodes();
   impl_->setup_matrix_free();
+  impl_->colour_batches();
   impl_->setup_plasticity();
   impl_->dt_stable = impl_->element_bound_time_step();
 }

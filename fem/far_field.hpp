@@ -57,7 +57,8 @@ std::vector<double> graded_steps(double a, double b, double fine_lower, double f
 
 class FarField {
  public:
-  // `threads`: the cap on deal.II's own (TBB) threads; its loops here run on the calling thread.
+  // `threads`: the cap on deal.II's own (TBB) threads, which hvi does not use: the cell loops run
+  // on OpenMP's threads, colour by colour, with the same result for any number of them.
   explicit FarField(const LayeredMesh& mesh, unsigned threads = 1);
   ~FarField();
   FarField(const FarField&) = delete;
