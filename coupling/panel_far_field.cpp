@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace hvi::coupling {
 
@@ -39,9 +41,13 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   const double max_element =
       spec.max_element > 0 ? spec.max_element : 6.0 * std::min(panel.front_thickness, panel.rear_thickness);
   if (max_element < h) throw std::invalid_argument("far field: the largest element is smaller than a grid cell");
-  if (panel.double_walls)
-    throw std::invalid_argument("far field: the homogenised core has closed forms for single walls only; "
-                                "a panel with double_walls cannot have a far field yet");
+  // Double walls make the core's transverse shear differ along and across the ribbon (the pattern's
+  // y'): the orthotropic axes must then be the panel's, the pattern turned by a multiple of 90 deg.
+  const double quarter_turns = panel.rotation / (std::numbers::pi / 2);
+  const bool ribbon_along_x = std::lround(quarter_turns) % 2 != 0;
+  if (panel.double_walls && std::abs(quarter_turns - std::round(quarter_turns)) > 1e-9)
+    throw std::invalid_argument("far field: a core with double walls needs the cell pattern turned by a multiple "
+                                "of 90 degrees (its orthotropic axes are the panel's)");
   if (spec.core_elements < 1 || spec.face_elements < 1)
     throw std::invalid_argument("far field: need at least one element through each layer");
   fem::LayeredMesh m;
@@ -53,14 +59,15 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   m.hole = spec.zone;
   const auto rear = panel.rear_box(), core = panel.core_box(), front = panel.front_box();
   auto iso = [](const SolidMaterial& s) { return fem::isotropic(s.youngs_modulus, s.poisson_ratio); };
-  const double solidity = fem::honeycomb_core_solidity(panel.cell_diameter, panel.wall_thickness);
+  const double solidity = fem::honeycomb_core_solidity(panel.cell_diameter, panel.wall_thickness, panel.double_walls);
+  fem::Orthotropic core_moduli = fem::honeycomb_core(spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio,
+                                                     panel.cell_diameter, panel.wall_thickness, panel.double_walls);
+  if (ribbon_along_x) std::swap(core_moduli.G13, core_moduli.G23);
   m.layers = {
       {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density,
        spec.rear.hardening},
-      {"core", core.lower[2], core.upper[2], spec.core_elements,
-       fem::honeycomb_core(spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio, panel.cell_diameter,
-                           panel.wall_thickness),
-       spec.core_wall.density * solidity, std::nullopt},
+      {"core", core.lower[2], core.upper[2], spec.core_elements, core_moduli, spec.core_wall.density * solidity,
+       std::nullopt},
       {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density,
        spec.front.hardening}};
   return m;

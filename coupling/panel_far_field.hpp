@@ -33,7 +33,8 @@ struct PanelFarFieldSpec {
 };
 
 // Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, or the
-// panel has double walls (the core's closed forms are for single walls).
+// panel has double walls and its cell pattern is not turned by a multiple of 90 degrees (the
+// core's orthotropic axes must be the panel's).
 fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
                                       const PanelFarFieldSpec& spec, const mpm::GridGeometry& grid);
 

@@ -32,10 +32,25 @@ Orthotropic isotropic(double youngs_modulus, double poisson_ratio);
 // The in-plane Poisson ratio of pure wall bending is 1, which makes a 3D compliance singular; we
 // take nu12 = 0.99. The in-plane stiffness is 1e-4 of the facesheets' and does not matter to the
 // panel's bending; it only has to be positive definite.
+//
+// Double walls (expanded honeycomb: the walls parallel to the ribbon direction, here y, are 2t
+// thick, as geometry/ builds them). E3 = E_s rho*/rho_s with the solidity below. Transverse shear
+// by Kelsey's two energy bounds per cell (area (3 sqrt(3)/2) l^2: one ribbon wall of length l,
+// two inclined walls at 30 degrees to x):
+//   across the ribbon (xz): the ribbon walls carry no shear flow in either bound, so
+//                 G13 = G_s t/D, as for single walls;
+//   along the ribbon (yz): unit displacement (upper) G_s (2t + t/2) / (3/2 sqrt(3) l) = 5/3 G_s t/D,
+//                 unit load (lower; the ribbon wall's flow splits in two at each joint)
+//                 G_s (3/2 sqrt(3) l^2) / ((sqrt(3) l)^2 (l/2t + l/2t)) = 3/2 G_s t/D;
+//                 we take their mean, G23 = 19/12 G_s t/D (each bound within 5.3% of it).
+// The in-plane moduli keep the single-wall forms: the inclined walls bend as before, and the
+// thicker ribbon walls only stiffen G12, which does not matter here.
 Orthotropic honeycomb_core(double wall_youngs_modulus, double wall_poisson_ratio,
-                           double cell_diameter, double wall_thickness);
-// rho*/rho_s of single-walled regular hexagons (the same closed form as geometry/'s).
-double honeycomb_core_solidity(double cell_diameter, double wall_thickness);
+                           double cell_diameter, double wall_thickness, bool double_walls = false);
+// rho*/rho_s of regular hexagons, single or double walls (the same closed form as geometry/'s):
+// single (2t/D)(1 - t/(2D)), double (8t/(3D))(1 - t/(2D)) (1 minus the cell's interior, shrunk by
+// half a wall, or a whole one on the two ribbon sides, over its (sqrt(3)/2) D^2).
+double honeycomb_core_solidity(double cell_diameter, double wall_thickness, bool double_walls = false);
 
 // The stiffness C (sigma = C eps, Voigt order xx, yy, zz, yz, xz, xy with engineering shear
 // strains) of an orthotropic solid in its axes: the nine independent entries

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -221,9 +222,11 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   if (f.max_element < h)
     error("max_element", fmt::format("{} m is smaller than a grid cell ({} m): the far field's elements are "
                                      "at least one cell long", f.max_element, h));
-  if (p.double_walls)
-    error("panel", fmt::format("panel '{}' has double walls; the far field's homogenised core has closed forms "
-                               "for single walls only", p.name));
+  const double quarter_turns = p.rotation / (std::numbers::pi / 2);
+  if (p.double_walls && std::abs(quarter_turns - std::round(quarter_turns)) > 1e-9)
+    error("panel", fmt::format("panel '{}' has double walls and its cells turned by {} deg: the far field's core "
+                               "takes its shear moduli along and across the ribbon on the panel's axes, so the "
+                               "rotation must be a multiple of 90 deg", p.name, p.rotation * 180 / std::numbers::pi));
   for (int d = 0; d < 2; ++d) {
     const double z0 = f.zone[d], z1 = f.zone[2 + d], a = f.extent[d], b = f.extent[2 + d];
     if (!(a <= z0 && z0 < z1 && z1 <= b)) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "coupling/panel_far_field.hpp"
 
@@ -67,7 +68,7 @@ TEST(PanelFarField, LayersMassAndInterfaceNodesFollowThePanelAndTheGrid) {
   EXPECT_LT(coupling.exact_node_count(), in_band);
 }
 
-TEST(PanelFarField, RefusesAZoneOffTheGridPlanesAndDoubleWalls) {
+TEST(PanelFarField, RefusesAZoneOffTheGridPlanesAndTurnedDoubleWalls) {
   StudyPanel s;
   s.spec.zone = {0, 0, 9.3e-3, 9.2e-3};
   EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
@@ -75,7 +76,25 @@ TEST(PanelFarField, RefusesAZoneOffTheGridPlanesAndDoubleWalls) {
   EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
   s.spec.zone = {0, 0, 9.2e-3, 9.2e-3};
   s.panel.double_walls = true;
+  s.panel.rotation = std::numbers::pi / 6;
   EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
+}
+
+// Double walls: the core is heavier by the ribbon walls and stiffer in shear along the ribbon (y'
+// of the pattern), which a quarter turn of the pattern puts on x.
+TEST(PanelFarField, DoubleWallsFollowTheRibbonDirection) {
+  StudyPanel s;
+  const fem::Layer single = panel_far_field_mesh(s.panel, s.spec, s.grid).layers[1];
+  s.panel.double_walls = true;
+  const fem::Layer along_y = panel_far_field_mesh(s.panel, s.spec, s.grid).layers[1];
+  s.panel.rotation = std::numbers::pi / 2;
+  const fem::Layer along_x = panel_far_field_mesh(s.panel, s.spec, s.grid).layers[1];
+  EXPECT_DOUBLE_EQ(along_y.density / single.density, 4.0 / 3.0);  // (8t/3D) / (2t/D), same (1 - t/2D)
+  EXPECT_DOUBLE_EQ(along_y.elasticity.E3 / single.elasticity.E3, 4.0 / 3.0);
+  EXPECT_DOUBLE_EQ(along_y.elasticity.G13, single.elasticity.G13);
+  EXPECT_DOUBLE_EQ(along_y.elasticity.G23 / single.elasticity.G23, 19.0 / 12.0);
+  EXPECT_DOUBLE_EQ(along_x.elasticity.G13, along_y.elasticity.G23);
+  EXPECT_DOUBLE_EQ(along_x.elasticity.G23, along_y.elasticity.G13);
 }
 
 }  // namespace

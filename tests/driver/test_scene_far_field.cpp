@@ -73,8 +73,8 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   d = error_for({"far_field.max_element=0.2 mm"}, "far_field.max_element");
   EXPECT_NE(d.message.find("smaller than a grid cell"), std::string::npos) << d.message;
 
-  d = error_for({"panel.panel.double_walls=true"}, "far_field.panel");
-  EXPECT_NE(d.message.find("double walls"), std::string::npos) << d.message;
+  d = error_for({"panel.panel.double_walls=true", "panel.panel.rotation=30 deg"}, "far_field.panel");
+  EXPECT_NE(d.message.find("multiple of 90 deg"), std::string::npos) << d.message;
 
   d = error_for({"far_field.edges=pinned"}, "far_field.edges");
   EXPECT_NE(d.message.find("clamped"), std::string::npos) << d.message;

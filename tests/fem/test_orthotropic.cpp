@@ -40,6 +40,28 @@ TEST(Orthotropic, HoneycombCoreClosedForms) {
   EXPECT_LT(C[2], c.E3 / (1 - nus * nus));
 }
 
+// Double walls (the ribbon walls 2t): the solidity is the plan area of the walls, which for
+// t << D is 1 + 1/3 times the single walls' (one wall in three per cell doubled); the shear along
+// the ribbon lies between Kelsey's bounds 3/2 and 5/3 G_s t/D; across it is unchanged.
+TEST(Orthotropic, DoubleWalledCoreClosedForms) {
+  const double Es = 73e9, nus = 0.33, D = 3e-3, t = 0.05e-3, Gs = Es / (2 * (1 + nus));
+  // The plan area exactly: the hexagon (sqrt(3)/2) D^2 minus its interior shrunk by t on the two
+  // ribbon sides and t/2 on the four others, a hexagon of half-widths r0 (across the ribbon
+  // sides) and r1: a rectangle 2 r0 x 2 y0 plus two triangles, y0 = (2 r1 - r0) / sqrt(3),
+  // y1 = 2 r1 / sqrt(3).
+  const double r0 = D / 2 - t, r1 = D / 2 - t / 2, s3 = std::sqrt(3.0);
+  const double y0 = (2 * r1 - r0) / s3, y1 = 2 * r1 / s3;
+  const double plan = 1 - (4 * r0 * y0 + 2 * r0 * (y1 - y0)) / (s3 / 2 * D * D);
+  EXPECT_NEAR(honeycomb_core_solidity(D, t, true), plan, 1e-15);
+  const auto c = honeycomb_core(Es, nus, D, t, true), single = honeycomb_core(Es, nus, D, t);
+  EXPECT_NEAR(c.E3 / (Es * plan), 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(c.G13, single.G13);
+  EXPECT_GT(c.G23, 1.5 * Gs * t / D);
+  EXPECT_LT(c.G23, 5.0 / 3.0 * Gs * t / D);
+  EXPECT_DOUBLE_EQ(c.E1, single.E1);
+  EXPECT_NO_THROW(stiffness(c));
+}
+
 TEST(Orthotropic, RefusesConstantsThatAreNotPositiveDefinite) {
   Orthotropic bad = isotropic(70e9, 0.3);
   bad.nu12 = 1.2;
