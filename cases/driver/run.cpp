@@ -318,6 +318,14 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
              e.momentum[1] + e.removed_momentum[1], e.momentum[2] + e.removed_momentum[2]);
   if (s.removed().particles > 0)
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
+  if (hybrid && hybrid->far_field().plastic()) {
+    const double alpha = hybrid->far_field().max_equivalent_plastic_strain();
+    fmt::print("  far field: largest plastic strain {:.4g}, plastic work {:.6g} J\n", alpha, hybrid->far_field().plastic_work());
+    // Small-strain J2 stays meaningful to a few percent; beyond, the damage has reached the zone's edge.
+    if (alpha > 0.05)
+      fmt::print("  warning: the far field's facesheets yield to a plastic strain of {:.3g} (small-strain theory); the "
+                 "damage reaches the MPM zone's edge: a larger [far_field] zone would hold it\n", alpha);
+  }
   record.initial_energy = initial_energy;
   auto measured = evaluate(scene.measures, s, record);
   measured.merge(probes->values(s));
