@@ -167,9 +167,7 @@ struct FarField::Impl {
   void plastic_force_kernel(const Vector<double>& src, Vector<double>& dst) {
     dst = 0.0;
     std::fill(batch_sum.begin(), batch_sum.end(), 0.0);
-    cell_loop<p>([&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
-      phi.reinit(cell);
-      phi.gather_evaluate(src, EvaluationFlags::gradients);
+    gradient_loop<p>(src, [&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
         if (plastic_slot[cell] < 0) {
@@ -202,16 +200,14 @@ struct FarField::Impl {
       }
       phi.integrate_scatter(EvaluationFlags::gradients, dst);
     });
-    for (const double w : batch_sum) plastic_work += w;  // in batch order: the same for any threads
+    plastic_work += batch_total();
   }
 
   // 1/2 int (eps - eps_p) : C (eps - eps_p) dV with the committed plastic strain.
   template <int p>
   double elastic_energy_kernel(const Vector<double>& src) const {
     std::fill(batch_sum.begin(), batch_sum.end(), 0.0);
-    cell_loop<p>([&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
-      phi.reinit(cell);
-      phi.gather_evaluate(src, EvaluationFlags::gradients);
+    gradient_loop<p>(src, [&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
         const Tensor<2, dim, VA> e = elastic_strain(cell, q, phi.get_gradient(q));
@@ -220,9 +216,7 @@ struct FarField::Impl {
           batch_sum[cell] += w[lane];
       }
     });
-    double energy = 0.0;
-    for (const double e : batch_sum) energy += e;
-    return energy;
+    return batch_total();
   }
 
   // The internal force's negative, K u when elastic.
@@ -259,12 +253,27 @@ struct FarField::Impl {
     }
   }
 
-  template <int p>
-  void stiffness_kernel(const Vector<double>& src, Vector<double>& dst) const {
-    dst = 0.0;
+  // body(phi, cell) with phi holding the gradients of src on the batch, for every cell batch.
+  template <int p, typename Body>
+  void gradient_loop(const Vector<double>& src, Body&& body) const {
     cell_loop<p>([&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       phi.reinit(cell);
       phi.gather_evaluate(src, EvaluationFlags::gradients);
+      body(phi, cell);
+    });
+  }
+
+  // The per-batch shares of a sum, added in batch order: the same for any thread count.
+  double batch_total() const {
+    double total = 0.0;
+    for (const double x : batch_sum) total += x;
+    return total;
+  }
+
+  template <int p>
+  void stiffness_kernel(const Vector<double>& src, Vector<double>& dst) const {
+    dst = 0.0;
+    gradient_loop<p>(src, [&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q)
         phi.submit_gradient(orthotropic_stress(C, phi.get_gradient(q)), q);
