@@ -23,6 +23,10 @@ Debris debris_cloud(const ParticleSet& set, const DebrisOptions& o,
     const double across = std::hypot(r[0] - along * d[0], r[1] - along * d[1], r[2] - along * d[2]);
     ++out.particles;
     if (!set.mass.empty()) out.mass += set.mass[p];
+    if (!set.mass.empty() && !set.velocity.empty()) {
+      const double* v = &set.velocity[3 * p];
+      out.kinetic_energy += 0.5 * set.mass[p] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    }
     out.axial_extent = std::max(out.axial_extent, behind);
     out.radial_extent = std::max(out.radial_extent, across);
   }

@@ -5,7 +5,8 @@
 // with d the impact direction (unit), a a point of the impact axis and back_face the position of
 // the rear face's back surface along d. Reported: the mass, how far the cloud reaches behind the
 // back face (max s_p, particle centres) and across the axis (the largest distance of a particle
-// centre from the impact axis). Material that has left the grid is not in the snapshot and not
+// centre from the impact axis), and its kinetic energy sum 1/2 m_p |v_p|^2 (when the set has
+// velocities). Material that has left the grid is not in the snapshot and not
 // counted.
 #include <cstdint>
 #include <span>
@@ -27,6 +28,7 @@ struct Debris {
   std::size_t particles = 0;
   double axial_extent = 0;   // m behind the back face
   double radial_extent = 0;  // m from the impact axis
+  double kinetic_energy = 0;  // J (0 without velocities)
 };
 
 // `excluded` (sorted or not) lists particles not to count: the rear facesheet's own attached

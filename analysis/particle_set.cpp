@@ -34,6 +34,10 @@ ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::i
         append_field(out.failed, set.failed, p, 1);
         append_field(out.spacing, set.spacing, p, 1);
         append_field(out.half_width, set.half_width, p, 3);
+        if (!set.velocity.empty()) {
+          const double* v = &set.velocity[3 * p];
+          out.velocity.insert(out.velocity.end(), {mx ? -v[0] : v[0], my ? -v[1] : v[1], v[2]});
+        }
       }
   return out;
 }

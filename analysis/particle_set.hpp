@@ -22,6 +22,7 @@ struct ParticleSet {
   std::span<const double> failed;   // 0 intact, 1 failed (optional: no failure model, all intact)
   std::span<const double> spacing;  // point spacing, m (optional): the footprint edge
   std::span<const double> half_width;  // 3 per particle, m (optional): GIMP half-widths
+  std::span<const double> velocity;    // 3 per particle, m/s (optional: the debris's kinetic energy)
 
   std::size_t size() const { return id.size(); }
   Vec3 x(std::size_t p) const {
@@ -32,12 +33,12 @@ struct ParticleSet {
 
 // Owning storage with the same fields (snapshots read from disk, mirrored copies, tests).
 struct ParticleData {
-  std::vector<double> position, mass, volume, failed, spacing, half_width;
+  std::vector<double> position, mass, volume, failed, spacing, half_width, velocity;
   std::vector<std::int64_t> id, body;
 
   std::size_t size() const { return id.size(); }
   ParticleSet view() const {
-    return {position, id, body, mass, volume, failed, spacing, half_width};
+    return {position, id, body, mass, volume, failed, spacing, half_width, velocity};
   }
 };
 
@@ -50,7 +51,8 @@ struct MirrorPlanes {
 // The full model from a half or quarter model: every particle and its images across the planes
 // (2 or 4 copies in all). Image k (k = 1, 2, 3) has id + k * id_stride, so two snapshots mirrored
 // with the same stride (larger than every id) still match particle by particle. Mass and volume
-// are copied: sums over the result are sums over the full model. A particle lying exactly on a
+// are copied: sums over the result are sums over the full model; velocities are mirrored with the
+// positions. A particle lying exactly on a
 // plane is copied too (lattice sampling puts none there: points sit half a spacing from a cut).
 ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride);
 

@@ -39,7 +39,7 @@ Snapshot read_snapshot(const fs::path& file) {
   p.mass = h5.read_doubles("mass");
   p.volume = h5.read_doubles("volume");
   if (h5.has_dataset("failed")) p.failed = h5.read_doubles("failed");
-  if (h5.has_dataset("velocity")) s.velocity = h5.read_doubles("velocity");
+  if (h5.has_dataset("velocity")) p.velocity = h5.read_doubles("velocity");
   s.volume0 = p.volume;
   if (h5.has_dataset("volume_ratio")) {
     const std::vector<double> ratio = h5.read_doubles("volume_ratio");

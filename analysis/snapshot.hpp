@@ -14,8 +14,7 @@ struct Snapshot {
   std::filesystem::path file;
   double time = 0;  // s
   std::int64_t step = 0;
-  ParticleData particles;        // position, id, body, mass, volume, failed (if written)
-  std::vector<double> velocity;  // 3 per particle, m/s
+  ParticleData particles;        // position, id, body, mass, volume, failed, velocity (if written)
   std::vector<double> volume0;   // initial volume, m^3 (volume / volume_ratio)
 };
 

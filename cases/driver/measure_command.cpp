@@ -75,10 +75,10 @@ struct Projectile {
 Projectile find_projectile(const analysis::Snapshot& s) {
   std::map<std::int64_t, std::array<double, 4>> momentum;  // body -> (m v, m)
   const auto& p = s.particles;
-  if (s.velocity.size() != 3 * p.size()) return {};
+  if (p.velocity.size() != 3 * p.size()) return {};
   for (std::size_t k = 0; k < p.size(); ++k) {
     auto& m = momentum[p.body[k]];
-    for (int d = 0; d < 3; ++d) m[d] += p.mass[k] * s.velocity[3 * k + d];
+    for (int d = 0; d < 3; ++d) m[d] += p.mass[k] * p.velocity[3 * k + d];
     m[3] += p.mass[k];
   }
   Projectile best;

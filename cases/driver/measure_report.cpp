@@ -90,6 +90,7 @@ std::vector<std::pair<std::string, std::string>> csv_cells(const Measurements& m
   c.emplace_back("debris_mass", num(m.debris.mass));
   c.emplace_back("debris_axial_extent", num(m.debris.axial_extent));
   c.emplace_back("debris_radial_extent", num(m.debris.radial_extent));
+  c.emplace_back("debris_kinetic_energy", num(m.debris.kinetic_energy));
   return c;
 }
 
@@ -163,7 +164,8 @@ void write_measurements(const Measurements& m, const fs::path& dir) {
                                    {"mass", m.debris.mass},
                                    {"particles", static_cast<std::int64_t>(m.debris.particles)},
                                    {"axial_extent", m.debris.axial_extent},
-                                   {"radial_extent", m.debris.radial_extent}});
+                                   {"radial_extent", m.debris.radial_extent},
+                                   {"kinetic_energy", m.debris.kinetic_energy}});
   toml::table vars;
   for (const auto& [name, value] : m.variables) vars.insert(name, value);
   j.insert("variables", vars);
@@ -202,7 +204,10 @@ std::vector<std::pair<std::string, double>> headline_quantities(const Measuremen
   sheet(m.rear, "rear");
   if (m.taper) q.emplace_back("taper", *m.taper);
   if (m.bulge) q.emplace_back("bulge", m.bulge->displacement);
-  if (!m.debris_behind.empty()) q.emplace_back("debris_mass", m.debris.mass);
+  if (!m.debris_behind.empty()) {
+    q.emplace_back("debris_mass", m.debris.mass);
+    q.emplace_back("debris_kinetic_energy", m.debris.kinetic_energy);
+  }
   return q;
 }
 
@@ -226,9 +231,9 @@ void print_measurements(const Measurements& m) {
     fmt::print(
         "debris behind {} (more than {:.4g} mm past z = {:.4f} mm): {:.4g} g in {} particles, "
         "{:.3f} mm deep, "
-        "{:.3f} mm from the axis\n",
+        "{:.3f} mm from the axis, kinetic energy {:.4g} J\n",
         m.debris_behind, m.debris_threshold / mm, m.debris_back_face / mm, m.debris.mass * 1e3,
-        m.debris.particles, m.debris.axial_extent / mm, m.debris.radial_extent / mm);
+        m.debris.particles, m.debris.axial_extent / mm, m.debris.radial_extent / mm, m.debris.kinetic_energy);
   for (const auto& n : m.notes) fmt::print("note: {}\n", n);
 }
 

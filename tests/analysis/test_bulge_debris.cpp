@@ -69,6 +69,7 @@ TEST(Debris, MassAndExtents) {
   ParticleData p;
   auto add = [&](double x, double y, double z, double m, std::int64_t body) {
     p.position.insert(p.position.end(), {x, y, z});
+    p.velocity.insert(p.velocity.end(), {10.0 * body, 20.0, -100.0});  // |v|^2 = 10400 + 100 body^2
     p.id.push_back(static_cast<std::int64_t>(p.id.size()));
     p.body.push_back(body);
     p.mass.push_back(m);
@@ -91,6 +92,9 @@ TEST(Debris, MassAndExtents) {
   EXPECT_NEAR(d.mass, 6e-6, 1e-18);
   EXPECT_NEAR(d.axial_extent, 4 * mm, 1e-12);
   EXPECT_NEAR(d.radial_extent, 3 * mm, 1e-12);
+  // 1/2 m |v|^2 of the three: bodies 0, 1, 2 with 1, 2 and 3 ug.
+  const double ke = 0.5 * (1e-6 * 10400 + 2e-6 * 10500 + 3e-6 * 10800);
+  EXPECT_NEAR(d.kinetic_energy, ke, 1e-15);
 
   // A half model (y >= 0 here) mirrored across y = 0: twice the mass, the same extents.
   const ParticleData whole = mirrored(p.view(), {.x = std::nullopt, .y = 0.0}, 100);
@@ -100,6 +104,8 @@ TEST(Debris, MassAndExtents) {
   EXPECT_NEAR(dw.mass, 12e-6, 1e-18);
   EXPECT_NEAR(dw.axial_extent, 4 * mm, 1e-12);
   EXPECT_NEAR(dw.radial_extent, 3 * mm, 1e-12);
+  EXPECT_NEAR(dw.kinetic_energy, 2 * ke, 1e-15);  // the images move mirrored, as fast
+  EXPECT_EQ(whole.velocity[3 * p.size() + 1], -20.0);  // v_y of the first image, across y = 0
 }
 
 }  // namespace

@@ -179,6 +179,8 @@ TEST(MeasureCommand, PanelHalfModelNotPerforatedRear) {
   EXPECT_NEAR(m.debris_back_face, -5.6 * mm, 1e-12);
   EXPECT_NEAR(m.debris.axial_extent, 7.95 * mm - 5.6 * mm, 1e-12);
   EXPECT_NEAR(m.debris.radial_extent, std::hypot(0.45, 0.45) * mm, 1e-12);
+  // Its kinetic energy: the projectile still moves at 3000 m/s, 1/2 m v^2 over both halves.
+  EXPECT_NEAR(m.debris.kinetic_energy, 0.5 * mass * 3000.0 * 3000.0, 1e-12 * mass * 9e6);
   // The dimensional-analysis variables from the scene.
   std::map<std::string, double> v(m.variables.begin(), m.variables.end());
   EXPECT_NEAR(v.at("v_p"), 3000, 1e-9);  // a mass-weighted mean: round-off
