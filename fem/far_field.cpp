@@ -127,6 +127,9 @@ struct FarField::Impl {
   std::vector<int> lane_layer, plastic_slot;
   std::vector<double> plastic;
   mutable std::vector<double> batch_sum;  // per cell batch: its share of a sum, added in order
+  // Finite strain only: per cell batch, the largest bound s >= |F|_2^2 at the last force
+  // evaluation (Gershgorin's on F^T F).
+  std::vector<double> batch_stretch;
   double plastic_work = 0.0;
   unsigned n_q = 0;
 
@@ -142,12 +145,17 @@ struct FarField::Impl {
     return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
   }
 
-  // The symmetric part of grad u, less the committed plastic strain in plastic lanes.
-  Tensor<2, dim, VA> elastic_strain(unsigned cell, unsigned q, const Tensor<2, dim, VA>& grad) const {
+  // The strain at a quadrature point from the displacement gradient H: (H + H^T)/2, plus H^T H / 2
+  // (Green-Lagrange) with finite strain, less the committed plastic strain in plastic lanes.
+  Tensor<2, dim, VA> strain(unsigned cell, unsigned q, const Tensor<2, dim, VA>& H) const {
     Tensor<2, dim, VA> e;
     for (int i = 0; i < dim; ++i)
-      for (int j = 0; j < dim; ++j) e[i][j] = 0.5 * (grad[i][j] + grad[j][i]);
-    if (plastic_slot[cell] < 0) return e;
+      for (int j = 0; j < dim; ++j) {
+        e[i][j] = 0.5 * (H[i][j] + H[j][i]);
+        if (spec.finite_strain)
+          for (int k = 0; k < dim; ++k) e[i][j] += 0.5 * H[k][i] * H[k][j];
+      }
+    if (!any_plastic() || plastic_slot[cell] < 0) return e;
     static constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
     for (unsigned lane = 0; lane < W; ++lane) {
       if (!lane_is_plastic(cell, lane)) continue;
@@ -161,56 +169,88 @@ struct FarField::Impl {
     return e;
   }
 
-  // -dst = the internal force: stresses returned to the yield surface in plastic lanes, their
-  // state and plastic work committed.
+  // The stress C : (E - E_p) of a plastic batch's lanes returned to the yield surface, their state
+  // and plastic work (into batch_sum) committed.
+  void return_to_yield(unsigned cell, unsigned q, VA jxw, Tensor<2, dim, VA>& sigma) {
+    const auto& C = batch_stiffness[cell];
+    for (unsigned lane = 0; lane < W; ++lane) {
+      if (!lane_is_plastic(cell, lane)) continue;
+      double* st = state(cell, q, lane);
+      J2State old;
+      std::copy(st, st + 6, old.plastic_strain.begin());
+      old.alpha = st[6];
+      const Sym trial{sigma[0][0][lane], sigma[1][1][lane], sigma[2][2][lane],
+                      sigma[1][2][lane], sigma[0][2][lane], sigma[0][1][lane]};
+      // C[8] = C66 = mu of the isotropic layer.
+      const J2Update r = j2_return(trial, old, C[8][lane], *spec.layers[lane_layer[W * cell + lane]].plasticity);
+      sigma[0][0][lane] = r.stress[0];
+      sigma[1][1][lane] = r.stress[1];
+      sigma[2][2][lane] = r.stress[2];
+      sigma[1][2][lane] = sigma[2][1][lane] = r.stress[3];
+      sigma[0][2][lane] = sigma[2][0][lane] = r.stress[4];
+      sigma[0][1][lane] = sigma[1][0][lane] = r.stress[5];
+      std::copy(r.state.plastic_strain.begin(), r.state.plastic_strain.end(), st);
+      st[6] = r.state.alpha;
+      batch_sum[cell] += r.plastic_work * jxw[lane];
+    }
+  }
+
+  // -dst = the internal force when it is not K u: with finite strain the first Piola-Kirchhoff
+  // stress P = (I + H) S is integrated against grad N, and the stretch bound of the stable step
+  // kept per batch; in plastic lanes S is returned to the yield surface first.
   template <int p>
-  void plastic_force_kernel(const Vector<double>& src, Vector<double>& dst) {
+  void nonlinear_force_kernel(const Vector<double>& src, Vector<double>& dst) {
     dst = 0.0;
     std::fill(batch_sum.begin(), batch_sum.end(), 0.0);
     gradient_loop<p>(src, [&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       const auto& C = batch_stiffness[cell];
+      const bool plastic_batch = any_plastic() && plastic_slot[cell] >= 0;
+      VA s_max = 1.0;
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
-        if (plastic_slot[cell] < 0) {
-          phi.submit_gradient(orthotropic_stress(C, phi.get_gradient(q)), q);
+        const Tensor<2, dim, VA> H = phi.get_gradient(q);
+        Tensor<2, dim, VA> S = orthotropic_stress(C, strain(cell, q, H));
+        if (plastic_batch) return_to_yield(cell, q, phi.JxW(q), S);
+        if (!spec.finite_strain) {
+          phi.submit_gradient(S, q);
           continue;
         }
-        Tensor<2, dim, VA> sigma = orthotropic_stress(C, elastic_strain(cell, q, phi.get_gradient(q)));
-        const VA jxw = phi.JxW(q);
-        for (unsigned lane = 0; lane < W; ++lane) {
-          if (!lane_is_plastic(cell, lane)) continue;
-          double* st = state(cell, q, lane);
-          J2State old;
-          std::copy(st, st + 6, old.plastic_strain.begin());
-          old.alpha = st[6];
-          const Sym trial{sigma[0][0][lane], sigma[1][1][lane], sigma[2][2][lane],
-                          sigma[1][2][lane], sigma[0][2][lane], sigma[0][1][lane]};
-          // C[8] = C66 = mu of the isotropic layer.
-          const J2Update r = j2_return(trial, old, C[8][lane], *spec.layers[lane_layer[W * cell + lane]].plasticity);
-          sigma[0][0][lane] = r.stress[0];
-          sigma[1][1][lane] = r.stress[1];
-          sigma[2][2][lane] = r.stress[2];
-          sigma[1][2][lane] = sigma[2][1][lane] = r.stress[3];
-          sigma[0][2][lane] = sigma[2][0][lane] = r.stress[4];
-          sigma[0][1][lane] = sigma[1][0][lane] = r.stress[5];
-          std::copy(r.state.plastic_strain.begin(), r.state.plastic_strain.end(), st);
-          st[6] = r.state.alpha;
-          batch_sum[cell] += r.plastic_work * jxw[lane];
+        Tensor<2, dim, VA> P, F = H;
+        for (int i = 0; i < dim; ++i) F[i][i] += 1.0;
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j)
+            for (int k = 0; k < dim; ++k) P[i][j] += F[i][k] * S[k][j];
+        // |F|_2^2 = the largest eigenvalue of F^T F, bounded by Gershgorin's row sums (exact for a
+        // rotation: F^T F = I).
+        for (int i = 0; i < dim; ++i) {
+          VA row = 0.0;
+          for (int j = 0; j < dim; ++j) {
+            VA c = 0.0;
+            for (int k = 0; k < dim; ++k) c += F[k][i] * F[k][j];
+            row += i == j ? c : std::abs(c);
+          }
+          s_max = std::max(s_max, row);
         }
-        phi.submit_gradient(sigma, q);
+        phi.submit_gradient(P, q);
       }
       phi.integrate_scatter(EvaluationFlags::gradients, dst);
+      if (spec.finite_strain) {
+        double s = 1.0;
+        for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
+          s = std::max(s, s_max[lane]);
+        batch_stretch[cell] = s;
+      }
     });
-    plastic_work += batch_total();
+    if (any_plastic()) plastic_work += batch_total();
   }
 
-  // 1/2 int (eps - eps_p) : C (eps - eps_p) dV with the committed plastic strain.
+  // 1/2 int (E - E_p) : C (E - E_p) dV with the committed plastic strain.
   template <int p>
   double elastic_energy_kernel(const Vector<double>& src) const {
     std::fill(batch_sum.begin(), batch_sum.end(), 0.0);
     gradient_loop<p>(src, [&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
-        const Tensor<2, dim, VA> e = elastic_strain(cell, q, phi.get_gradient(q));
+        const Tensor<2, dim, VA> e = strain(cell, q, phi.get_gradient(q));
         const VA w = 0.5 * scalar_product(orthotropic_stress(C, e), e) * phi.JxW(q);
         for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
           batch_sum[cell] += w[lane];
@@ -219,13 +259,16 @@ struct FarField::Impl {
     return batch_total();
   }
 
-  // The internal force's negative, K u when elastic.
+  // Whether the force is other than K u.
+  bool nonlinear() const { return spec.finite_strain || any_plastic(); }
+
+  // The internal force's negative, K u when elastic with small strain.
   void internal(const Vector<double>& src, Vector<double>& dst) {
-    if (!any_plastic()) return apply(src, dst);
+    if (!nonlinear()) return apply(src, dst);
     if (spec.degree == 1)
-      plastic_force_kernel<1>(src, dst);
+      nonlinear_force_kernel<1>(src, dst);
     else
-      plastic_force_kernel<2>(src, dst);
+      nonlinear_force_kernel<2>(src, dst);
   }
 
   // The cell batches in colours: no two batches of a colour share a node, so within a colour
@@ -462,6 +505,7 @@ void FarField::Impl::colour_batches() {
     colours[c].push_back(cell);
   }
   batch_sum.assign(matrix_free.n_cell_batches(), 0.0);
+  if (spec.finite_strain) batch_stretch.assign(matrix_free.n_cell_batches(), 1.0);
 }
 
 void FarField::Impl::setup_plasticity() {
@@ -594,7 +638,11 @@ void FarField::step(double dt, std::span<const double> external) {
     }
 }
 
-double FarField::stable_time_step() const { return impl_->dt_stable; }
+double FarField::stable_time_step() const {
+  double s = 1.0;
+  for (const double b : impl_->batch_stretch) s = std::max(s, b);
+  return impl_->dt_stable / std::sqrt(0.5 * (3.0 * s - 1.0));
+}
 
 double FarField::kinetic_energy(std::span<const double> v) const {
   double e = 0.0;
@@ -606,13 +654,14 @@ double FarField::kinetic_energy() const { return kinetic_energy(velocity()); }
 
 double FarField::strain_energy() const {
   const auto& I = *impl_;
-  if (I.any_plastic()) return I.spec.degree == 1 ? I.elastic_energy_kernel<1>(I.u) : I.elastic_energy_kernel<2>(I.u);
+  if (I.nonlinear()) return I.spec.degree == 1 ? I.elastic_energy_kernel<1>(I.u) : I.elastic_energy_kernel<2>(I.u);
   I.apply(I.u, I.work_out);
   return 0.5 * (I.u * I.work_out);
 }
 
 double FarField::plastic_work() const { return impl_->plastic_work; }
 bool FarField::plastic() const { return impl_->any_plastic(); }
+bool FarField::finite_strain() const { return impl_->spec.finite_strain; }
 
 double FarField::max_equivalent_plastic_strain() const {
   double m = 0.0;
@@ -640,7 +689,8 @@ std::size_t FarField::bytes() const {
          4 * I.u.memory_consumption() + I.positions.size() * sizeof(double) +
          I.mass.size() * (sizeof(double) + sizeof(int) + sizeof(unsigned)) +
          I.batch_stiffness.size() * sizeof(std::array<VA, 9>) +
-         I.plastic.size() * sizeof(double) + (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int);
+         (I.plastic.size() + I.batch_stretch.size()) * sizeof(double) +
+         (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int);
 }
 
 void FarField::write_vtu(const std::string& path) const {

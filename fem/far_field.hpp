@@ -1,10 +1,19 @@
 #pragma once
 // The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
-// two elements through its thickness, the core a homogenised orthotropic solid), small-strain
-// linear elasticity (total Lagrangian: every quantity refers to the undeformed mesh), optionally
-// J2 plasticity in the isotropic layers (fem/j2_plasticity.hpp), explicit
-// central differences with a lumped mass, and a matrix-free stiffness (deal.II MatrixFree /
-// FEEvaluation). deal.II stays behind this header: callers see nodes as plain arrays.
+// two elements through its thickness, the core a homogenised orthotropic solid), total
+// Lagrangian (every quantity refers to the undeformed mesh), optionally J2 plasticity in the
+// isotropic layers (fem/j2_plasticity.hpp), explicit central differences with a lumped mass, and
+// matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
+// callers see nodes as plain arrays.
+//
+// Kinematics, with H = grad_X u the displacement gradient on the undeformed mesh:
+//   small strain   eps = (H + H^T)/2,            sigma = C : eps,   f_a = -int sigma . grad N_a dV
+//   finite strain  E = (H + H^T + H^T H)/2,      S = C : E,         f_a = -int (I + H) S . grad N_a dV
+// The second is the orthotropic Saint Venant-Kirchhoff solid: S the second Piola-Kirchhoff stress,
+// P = F S the first, so a rigid rotation of any size gives no force and no energy, and the strain
+// energy 1/2 int E : C : E dV is exact (hyperelastic). With J2 it is the additive split
+// E = E_e + E_p in the reference configuration, S = C : (E - E_p) returned to the yield surface:
+// small elastic strains under rotations of any size, as in a panel's torn, bent edge.
 //
 // Elements are Lagrange Q2 by default: a thin facesheet one element thick bends without the
 // shear locking of trilinear Q1 bricks (tests/fem shows both). The mass is lumped by
@@ -46,6 +55,7 @@ struct LayeredMesh {
   // impact zone, where the material points are.
   std::optional<std::array<double, 4>> hole;
   int degree = 2;  // 1 (trilinear) or 2 (triquadratic)
+  bool finite_strain = false;  // Green-Lagrange strain and P = F S; false: linearised (small strain)
 };
 
 // Element widths covering [a, b]: `fine` in [fine_lower, fine_upper] (which must be whole
@@ -84,11 +94,11 @@ class FarField {
   void fix(std::size_t node, unsigned components);
   unsigned fixed(std::size_t node) const;
 
-  // f = -int B^T sigma dV at the current displacement, 3 per node (N); `force` must hold
-  // 3 * node_count(). Elastic: f = -K u. With plastic layers the stress is returned to the yield
-  // surface and the plastic state committed: call it once per step.
+  // f = -int P . grad N dV at the current displacement, 3 per node (N); `force` must hold
+  // 3 * node_count(). Elastic with small strain: f = -K u. With plastic layers the stress is
+  // returned to the yield surface and the plastic state committed: call it once per step.
   void internal_force(std::span<double> force);
-  // The elastic K applied to any nodal vector (N): for tests and energy.
+  // The linearised elastic K (at u = 0) applied to any nodal vector (N): for tests and energy.
   void apply_stiffness(std::span<const double> u, std::span<double> Ku) const;
 
   // One central-difference step of the far field alone: v += dt M^-1 (f_int + f_ext), then
@@ -98,17 +108,25 @@ class FarField {
   // The stable time step 2 / omega_max, with omega_max^2 bounded from above by the largest
   // eigenvalue of M_e^-1 K_e over the elements (the element eigenvalue theorem: the assembled
   // system's is never larger). Computed once from the element matrices, never guessed.
+  // With finite strain the tangent stiffens with the stretch: at a point with deformation gradient
+  // F the tangent dP/dF = (.) S + F C : sym(F^T .) is bounded by |F|^2 C plus a tensile S of at
+  // most C |E| <= C (|F|^2 - 1)/2, so the step is divided by sqrt(k), k = (3 s - 1)/2 with
+  // s >= |F|_2^2 (Gershgorin's bound on the eigenvalues of F^T F, 1 for any rotation), the largest
+  // at any quadrature point at the last force evaluation (k = 1 undeformed or in compression).
   double stable_time_step() const;
 
   // Energies (J): kinetic 1/2 sum m v^2 of the current velocities; elastic strain energy
-  // 1/2 int (eps - eps_p) : C (eps - eps_p) dV with the committed plastic strain (1/2 u.K u when
-  // elastic); the plastic work done so far, sum over steps and points of dgamma q JxW.
+  // 1/2 int (E - E_p) : C (E - E_p) dV (E the strain of the kinematics, E_p the committed plastic
+  // strain; 1/2 u.K u when elastic with small strain); the plastic work done so far, sum over
+  // steps and points of dgamma q JxW.
   double kinetic_energy() const;
   double strain_energy() const;
   double plastic_work() const;
   double kinetic_energy(std::span<const double> v) const;
   std::array<double, 3> momentum() const;
 
+  // Whether the kinematics are finite (Green-Lagrange) rather than small strain.
+  bool finite_strain() const;
   // Whether any layer is plastic; the largest equivalent plastic strain at any quadrature point.
   bool plastic() const;
   double max_equivalent_plastic_strain() const;

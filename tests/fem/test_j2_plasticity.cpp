@@ -5,33 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "fem/far_field.hpp"
 #include "fem/j2_plasticity.hpp"
+#include "block.hpp"
 
 namespace hvi::fem {
 namespace {
 
-// Al6061 as in the paper's Table 4 (E, nu; Johnson-Cook A, B, n).
-const double E = 69e9, nu = 0.33, rho = 2700;
-mpm::JohnsonCookStrength al6061() {
-  mpm::JohnsonCookStrength jc;
-  jc.A = 324e6;
-  jc.B = 114e6;
-  jc.n = 0.42;
-  return jc;
-}
-
-LayeredMesh block(int degree, bool plastic) {
-  LayeredMesh m;
-  m.lower = {0, 0};
-  m.x_steps = {0.5e-3, 0.5e-3};
-  m.y_steps = {0.5e-3, 0.5e-3};
-  m.layers = {{"face", 0, 1e-3, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt}};
-  m.degree = degree;
-  return m;
-}
+using namespace test;
 
 // Uniaxial strain e along x with J2 and radial flow: eps_p = alpha diag(1, -1/2, -1/2), so
 //   s_xx = 2 mu (2e/3 - alpha),  s_yy = s_zz = 2 mu (alpha/2 - e/3),  q = 2 mu |e - 3/2 alpha|,
@@ -55,23 +39,16 @@ struct Uniaxial {
 
 // sigma_xx and sigma_yy read from the internal force: for a homogeneous stress the forces on the
 // nodes of the face x = L add up to -sigma_xx times its area (and likewise for y).
-std::pair<double, double> stresses(FarField& f, double L) {
+std::pair<double, double> stresses(FarField& f) {
   std::vector<double> force(3 * f.node_count());
   f.internal_force(force);
-  const auto x = f.reference_positions();
-  double fx = 0, fy = 0;
-  for (std::size_t a = 0; a < f.node_count(); ++a) {
-    if (std::abs(x[3 * a] - L) < 1e-12) fx += force[3 * a];
-    if (std::abs(x[3 * a + 1] - L) < 1e-12) fy += force[3 * a + 1];
-  }
-  return {-fx / (L * L), -fy / (L * L)};
+  return {-face_force(force, f, 0)[0] / (L * L), -face_force(force, f, 1)[1] / (L * L)};
 }
 
 }  // namespace
 
 TEST(J2Plasticity, UniaxialStrainLoadAndUnloadFollowTheClosedForm) {
-  const double L = 1e-3, V = L * L * L;
-  const double mu = E / (2 * (1 + nu)), K = E / (3 * (1 - 2 * nu));
+  const double V = L * L * L, K = E / (3 * (1 - 2 * nu));
   const Uniaxial exact{mu, K, al6061()};
   for (const int degree : {1, 2}) {
     FarField f(block(degree, true));
@@ -90,7 +67,7 @@ TEST(J2Plasticity, UniaxialStrainLoadAndUnloadFollowTheClosedForm) {
     for (int k = 1; k <= n; ++k) {
       const double e = e_max * k / n;
       set_strain(e);
-      const auto [sxx, syy] = stresses(f, L);
+      const auto [sxx, syy] = stresses(f);
       const double alpha = exact.alpha_on_loading(e);
       EXPECT_NEAR(sxx, exact.sxx(e, alpha), 1e-9 * exact.sxx(e, alpha)) << "degree " << degree << ", e " << e;
       EXPECT_NEAR(syy, exact.syy(e, alpha), 1e-9 * exact.sxx(e, alpha)) << "degree " << degree << ", e " << e;
@@ -112,7 +89,7 @@ TEST(J2Plasticity, UniaxialStrainLoadAndUnloadFollowTheClosedForm) {
     for (int k = n - 1; k >= 0; --k) {
       const double e = e_max * k / n;
       set_strain(e);
-      const auto [sxx, syy] = stresses(f, L);
+      const auto [sxx, syy] = stresses(f);
       EXPECT_NEAR(sxx, exact.sxx(e, alpha_prev), 1e-9 * std::abs(exact.sxx(e_max, alpha_prev)));
       EXPECT_NEAR(syy, exact.syy(e, alpha_prev), 1e-9 * std::abs(exact.sxx(e_max, alpha_prev)));
     }
@@ -133,7 +110,7 @@ TEST(J2Plasticity, ElasticLayersKeepNoPlasticState) {
     const auto x = f->reference_positions();
     for (std::size_t i = 0; i < u.size(); ++i) u[i] = i % 3 == 0 ? 1e-3 * x[i] : 0.0;
   }
-  EXPECT_NEAR(stresses(plastic, 1e-3).first, stresses(elastic, 1e-3).first, 1e-12 * stresses(elastic, 1e-3).first);
+  EXPECT_NEAR(stresses(plastic).first, stresses(elastic).first, 1e-12 * stresses(elastic).first);
   EXPECT_EQ(plastic.plastic_work(), 0.0);
 }
 
@@ -141,6 +118,52 @@ TEST(J2Plasticity, APlasticLayerMustBeIsotropic) {
   LayeredMesh m = block(1, true);
   m.layers[0].elasticity = honeycomb_core(70e9, 0.33, 3e-3, 0.05e-3);
   EXPECT_THROW(FarField f(m), std::invalid_argument);
+}
+
+
+// With finite strain the closed form above holds in the Green-Lagrange strain: a uniaxial stretch
+// F = diag(lambda, 1, 1) has E_xx = (lambda^2 - 1)/2, S as s_xx, s_yy above with e = E_xx, and the
+// faces carry P = F S on their reference areas (P_xx = lambda S_xx, P_yy = S_yy). Turning the
+// stretched block rigidly by up to 90 degrees (F -> R F) leaves E, S and alpha as they were: the
+// face's force turns with R and no plastic work is done. With small strain the same turn reads as
+// a compressive strain of order one and yields the block through and through.
+TEST(J2Plasticity, FiniteStrainStretchThenRigidTurnIsObjective) {
+  const double K = E / (3 * (1 - 2 * nu));
+  const Uniaxial exact{mu, K, al6061()};
+  for (const int degree : {1, 2}) {
+    FarField f(block(degree, true, true)), small(block(degree, true, false));
+    std::vector<double> force(3 * f.node_count());
+    const int n = 100;
+    const double E_max = 0.01;
+    double alpha = 0, lambda = 1;
+    for (int k = 1; k <= n; ++k) {
+      const double Exx = E_max * k / n;
+      lambda = std::sqrt(1 + 2 * Exx);
+      for (FarField* g : {&f, &small}) deform(*g, {{{lambda - 1, 0, 0}, {0, 0, 0}, {0, 0, 0}}});
+      small.internal_force(force);
+      f.internal_force(force);
+      alpha = exact.alpha_on_loading(Exx);
+      const double Sxx = exact.sxx(Exx, alpha);
+      EXPECT_NEAR(-face_force(force, f, 0)[0] / (L * L), lambda * Sxx, 1e-9 * Sxx) << "degree " << degree;
+      EXPECT_NEAR(-face_force(force, f, 1)[1] / (L * L), exact.syy(Exx, alpha), 1e-9 * Sxx) << "degree " << degree;
+    }
+    EXPECT_GT(alpha, 1e-3);
+    EXPECT_NEAR(f.max_equivalent_plastic_strain(), alpha, 1e-12);
+    const double work = f.plastic_work(), Sxx = exact.sxx(E_max, alpha);
+    for (int k = 1; k <= 10; ++k) {
+      const double turn = 0.5 * std::numbers::pi * k / 10, c = std::cos(turn), s = std::sin(turn);
+      for (FarField* g : {&f, &small}) deform(*g, {{{c * lambda - 1, -s, 0}, {s * lambda, c - 1, 0}, {0, 0, 0}}});
+      small.internal_force(force);
+      f.internal_force(force);
+      const auto fx = face_force(force, f, 0);
+      EXPECT_NEAR(-fx[0] / (L * L), c * lambda * Sxx, 1e-9 * Sxx) << "degree " << degree << ", turn " << k;
+      EXPECT_NEAR(-fx[1] / (L * L), s * lambda * Sxx, 1e-9 * Sxx) << "degree " << degree << ", turn " << k;
+      EXPECT_NEAR(fx[2] / (L * L), 0.0, 1e-9 * Sxx) << "degree " << degree << ", turn " << k;
+    }
+    EXPECT_NEAR(f.max_equivalent_plastic_strain(), alpha, 1e-12);
+    EXPECT_NEAR(f.plastic_work(), work, 1e-9 * work);
+    EXPECT_GT(small.max_equivalent_plastic_strain(), 0.1);
+  }
 }
 
 }  // namespace hvi::fem

@@ -1,0 +1,58 @@
+#pragma once
+// A solid block of the far field for the tests that strain it homogeneously: one isotropic layer
+// of Al6061 (the paper's Table 4: E, nu, density; Johnson-Cook A, B, n for J2), L = 1 mm on each
+// side, 2 x 2 x 2 elements, and the nodal forces' sums over a face of the block.
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "fem/far_field.hpp"
+
+namespace hvi::fem::test {
+
+inline constexpr double E = 69e9, nu = 0.33, rho = 2700, L = 1e-3;
+inline const double mu = E / (2 * (1 + nu)), lame = E * nu / ((1 + nu) * (1 - 2 * nu));
+
+inline mpm::JohnsonCookStrength al6061() {
+  mpm::JohnsonCookStrength jc;
+  jc.A = 324e6;
+  jc.B = 114e6;
+  jc.n = 0.42;
+  return jc;
+}
+
+inline LayeredMesh block(int degree, bool plastic, bool finite_strain = false) {
+  LayeredMesh m;
+  m.lower = {0, 0};
+  m.x_steps = {0.5 * L, 0.5 * L};
+  m.y_steps = {0.5 * L, 0.5 * L};
+  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt}};
+  m.degree = degree;
+  m.finite_strain = finite_strain;
+  return m;
+}
+
+// u = A X + c at every node (A = F - I of a homogeneous deformation).
+inline void deform(FarField& f, const std::array<std::array<double, 3>, 3>& A, const std::array<double, 3>& c = {}) {
+  auto u = f.displacement();
+  const auto x = f.reference_positions();
+  for (std::size_t a = 0; a < f.node_count(); ++a)
+    for (int i = 0; i < 3; ++i)
+      u[3 * a + i] = c[i] + A[i][0] * x[3 * a] + A[i][1] * x[3 * a + 1] + A[i][2] * x[3 * a + 2];
+}
+
+// The internal force summed over the nodes of the reference face X_axis = L: for a homogeneous
+// first Piola-Kirchhoff stress P it is -P N L^2 with N the face's normal, so column `axis` of P
+// is -sum / L^2.
+inline std::array<double, 3> face_force(const std::vector<double>& force, const FarField& f, int axis) {
+  const auto x = f.reference_positions();
+  std::array<double, 3> sum{};
+  for (std::size_t a = 0; a < f.node_count(); ++a)
+    if (std::abs(x[3 * a + axis] - L) < 1e-12)
+      for (int i = 0; i < 3; ++i) sum[i] += force[3 * a + i];
+  return sum;
+}
+
+}  // namespace hvi::fem::test
