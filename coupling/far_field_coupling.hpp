@@ -9,8 +9,9 @@
 // the hooks of mpm/grid_coupling.hpp):
 //   m_I += w m_a                      lumped far-field mass      (stage mass_momentum)
 //   p_I += w m_a v_a^(n-1/2)          far-field momentum
-//   f_I += w f_a,  f = -K u^n         far-field internal force   (stage force; J2 stresses
-//                                      in plastic facesheets, their state committed here)
+//   f_I += w f_a,  f = -K u^n         far-field internal force   (stage force; with finite
+//                                      strain -int F S . grad N; J2 stresses in plastic
+//                                      facesheets, their state committed here)
 // the grid solves v_I, dv_I = dt f_I / m_I once for both sides, and the tied node takes
 //   v_a <- flip (v_a + sum_I w dv_I) + (1 - flip) sum_I w (v_I + dv_I)
 // with the solver's FLIP fraction, and moves as a particle does, with the nodal velocity:
@@ -24,8 +25,9 @@
 // gives every tied node and particle the nodal velocity). With MUSL the tied nodes add their new
 // momentum w m_a v_a to the remap (stage remapped).
 //
-// The far field's stable step (its element bound, times `safety`) enters the solver's choice of
-// time step, so both sides take the smaller of the two limits.
+// The far field's stable step (its element bound, times `safety`; with finite strain reduced by
+// the current stretch) enters the solver's choice of time step at every step, so both sides take
+// the smaller of the two limits.
 #include <array>
 #include <cstdint>
 #include <vector>

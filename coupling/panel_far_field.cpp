@@ -52,6 +52,7 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
     throw std::invalid_argument("far field: need at least one element through each layer");
   fem::LayeredMesh m;
   m.degree = 1;
+  m.finite_strain = spec.finite_strain;
   m.lower = {panel.lower[0], panel.lower[1]};
   const auto& z = spec.zone;
   m.x_steps = axis_steps(panel.lower[0], panel.upper[0], z[0], z[2], spec, h, max_element, 0, grid);

@@ -30,6 +30,7 @@ struct PanelFarFieldSpec {
   double max_element = 0;        // m; 0: 6 times the thinner facesheet
   int core_elements = 8;         // through the core height
   int face_elements = 1;         // through each facesheet
+  bool finite_strain = false;    // Green-Lagrange kinematics (fem/far_field.hpp); false: small strain
 };
 
 // Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, or the

@@ -66,6 +66,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   spec.max_element = f.max_element;
   spec.core_elements = f.core_elements;
   spec.face_elements = f.face_elements;
+  spec.finite_strain = f.finite_strain;
   const mpm::GridGeometry grid = grid_geometry(scene);
   far_field_ = std::make_unique<fem::FarField>(coupling::panel_far_field_mesh(panel, spec, grid), 1);
   const auto x = far_field_->reference_positions();
@@ -81,9 +82,10 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
 }
 
 std::string Hybrid::describe() const {
-  return fmt::format("far field: {} nodes, {} elements (trilinear{}), {} tied to grid nodes ({} exactly), {} with "
+  return fmt::format("far field: {} nodes, {} elements (trilinear{}{}), {} tied to grid nodes ({} exactly), {} with "
                      "conditions; stable step {:.4g} s; {:.1f} MB",
                      far_field_->node_count(), far_field_->cell_count(),
+                     far_field_->finite_strain() ? ", finite strain" : "",
                      far_field_->plastic() ? ", J2 facesheets" : "", coupling_->tied_node_count(),
                      coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),
                      far_field_->bytes() / 1e6);

@@ -129,6 +129,7 @@ struct FarFieldSettings {
   double growth = 1.25, max_element = 0.0, safety = 0.9;
   bool clamped_edges = false;
   bool plastic_faces = false;  // plasticity = "j2": the facesheets yield (their Johnson-Cook A, B, n)
+  bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
 };
 
 struct Scene {

@@ -203,6 +203,7 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.safety = number(t, "safety");
   f.clamped_edges = text(t, "edges") == "clamped";
   f.plastic_faces = text(t, "plasticity") == "j2";
+  f.finite_strain = text(t, "kinematics") == "finite";
   std::size_t reported = s.materials.size();  // front and rear often share a material: one error
   if (f.plastic_faces)
     for (const auto& b : s.bodies) {

@@ -225,7 +225,8 @@ TableSpec far_field_table() {
   TableSpec t{.name = "far_field",
               .doc = "The hybrid: the named [[panel]] is material points inside `zone` and finite "
                      "elements (fem/: facesheets of solid bricks, the core a homogenised orthotropic "
-                     "solid, small-strain elastic with the materials' E, nu and density, optionally J2 facesheets) over the rest "
+                     "solid, elastic with the materials' E, nu and density, small or finite strain, optionally J2 "
+                     "facesheets) over the rest "
                      "of its in-plane extent (cut by its clip). Both share the grid nodes of a band "
                      "around the zone and advance with one time step. Absent: nothing of fem/ is built."};
   t.string_required("panel", "The [[panel]] whose far field this is")
@@ -243,6 +244,9 @@ TableSpec far_field_table() {
       .choice("plasticity", {"none", "j2"}, "none",
               "The far field's facesheets: elastic, or J2 plasticity hardening as their materials' "
               "Johnson-Cook A + B eps_p^n (rate and thermal factors 1); the core stays elastic")
+      .choice("kinematics", {"small", "finite"}, "small",
+              "The far field's strain: small (linearised, sigma = C eps) or finite (total Lagrangian "
+              "Green-Lagrange strain E, S = C E, P = F S: rotations of any size give no stress)")
       .choice("edges", {"free", "clamped"}, "free",
               "The panel's outer edges (sides on a [[boundary]] plane take that condition instead)")
       .number("safety", left_open(0, 1), 0.9,

@@ -79,6 +79,9 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   d = error_for({"far_field.edges=pinned"}, "far_field.edges");
   EXPECT_NE(d.message.find("clamped"), std::string::npos) << d.message;
 
+  d = error_for({"far_field.kinematics=large"}, "far_field.kinematics");
+  EXPECT_NE(d.message.find("finite"), std::string::npos) << d.message;
+
   // J2 facesheets harden as their material's Johnson-Cook strength: the elastic aluminium has none.
   d = error_for({"far_field.plasticity=j2"}, "far_field.plasticity");
   EXPECT_NE(d.message.find("'aluminium' (panel.front) names strength = \"elastic\""), std::string::npos) << d.message;
@@ -91,6 +94,15 @@ TEST(SceneFarField, PlasticFacesheetsOnlyWhenNamed) {
                                "material.aluminium.strength=johnson-cook"});
   EXPECT_TRUE(s.far_field->plastic_faces);
   EXPECT_EQ(s.resolved["far_field"]["plasticity"].value_or(std::string{}), "j2");
+}
+
+TEST(SceneFarField, FiniteStrainOnlyWhenNamed) {
+  const Scene small = parse_scene(small_hybrid(), "small_hybrid.toml");
+  EXPECT_FALSE(small.far_field->finite_strain);
+  EXPECT_EQ(small.resolved["far_field"]["kinematics"].value_or(std::string{}), "small");
+  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml", {"far_field.kinematics=finite"});
+  EXPECT_TRUE(s.far_field->finite_strain);
+  EXPECT_EQ(s.resolved["far_field"]["kinematics"].value_or(std::string{}), "finite");
 }
 
 }  // namespace
