@@ -2,9 +2,10 @@
 // The quarter of a 300 x 300 mm study panel (t_f = t_r = 0.5 mm, S = 14.2 mm, D_hc = 3 mm,
 // t_hc = 0.05 mm) around a 24 x 24 mm MPM zone: elements of 0.4 mm (the grid's cell) at the
 // interface growing by 1.25 per element up to 3 mm (6 t_f, the Q1 locking rule), the faces one
-// element and the core four elements through the thickness; arguments: the element degree, and 1
-// for J2 facesheets (the cost of far_field.plasticity = "j2": the return at every facesheet
-// quadrature point, elastic or not); run with OMP_NUM_THREADS=1 and 2 (the cell loops run on
+// element and the core four elements through the thickness; arguments: the element degree, 1 for
+// J2 facesheets (the cost of far_field.plasticity = "j2": the return at every facesheet
+// quadrature point, elastic or not), and 1 for finite strain (far_field.kinematics = "finite":
+// F S instead of K u at every quadrature point, and the stretch bound of the step); run with OMP_NUM_THREADS=1 and 2 (the cell loops run on
 // OpenMP threads). Reports node_steps_per_s (nodes x steps / wall time) and bytes_per_node.
 #include <benchmark/benchmark.h>
 
@@ -12,7 +13,7 @@
 
 namespace {
 
-hvi::fem::LayeredMesh study_panel_quarter(int degree, bool plastic) {
+hvi::fem::LayeredMesh study_panel_quarter(int degree, bool plastic, bool finite_strain) {
   using namespace hvi::fem;
   const double h = 0.4e-3, zone = 12e-3, half = 150e-3;
   LayeredMesh m;
@@ -30,11 +31,12 @@ hvi::fem::LayeredMesh study_panel_quarter(int degree, bool plastic) {
               {"core", -14.7e-3, -0.5e-3, 4, core, rho_core, {}},
               {"front", -0.5e-3, 0, 1, face, 2770, j2}};
   m.degree = degree;
+  m.finite_strain = finite_strain;
   return m;
 }
 
 void FarFieldPanel(benchmark::State& state) {
-  hvi::fem::FarField f(study_panel_quarter(static_cast<int>(state.range(0)), state.range(1) != 0));
+  hvi::fem::FarField f(study_panel_quarter(static_cast<int>(state.range(0)), state.range(1) != 0, state.range(2) != 0));
   const double dt = 0.9 * f.stable_time_step();
   auto v = f.velocity();
   for (std::size_t a = 0; a < f.node_count(); ++a) v[3 * a + 2] = 1.0;  // something to move
@@ -50,6 +52,12 @@ void FarFieldPanel(benchmark::State& state) {
   state.counters["bytes_per_node"] = static_cast<double>(f.bytes()) / nodes;
 }
 
-BENCHMARK(FarFieldPanel)->Args({1, 0})->Args({1, 1})->Args({2, 0})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(FarFieldPanel)
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({1, 0, 1})
+    ->Args({1, 1, 1})
+    ->Args({2, 0, 0})
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
