@@ -480,8 +480,9 @@ std::string toml_text(const toml::node& value) {
 // Named override sets: a scene may define [resolutions.<name>] tables of "key.path" = value
 // entries; `resolution = "<name>"` (in the file or given as --set resolution=<name>) applies one,
 // then the command-line overrides are applied again so that they win. The sets themselves are
-// dropped: the resolved scene records the values they set and the chosen name.
-void apply_resolution(toml::table& document, const std::string& file) {
+// dropped: the resolved scene records the values they set, the chosen name, and the chosen set as
+// an empty table, so that it reads back as it is (a resumed run, `hvi measure`).
+std::string apply_resolution(toml::table& document, const std::string& file) {
   const toml::node* sets_node = document.get("resolutions");
   const toml::node* name_node = document.get("resolution");
   std::vector<Diagnostic> errors;
@@ -524,13 +525,16 @@ void apply_resolution(toml::table& document, const std::string& file) {
   }
   if (!errors.empty()) throw SceneError(errors);
   document.erase("resolutions");
+  return choice;
 }
 
 Scene resolve_document(toml::table document, const std::string& file, const std::vector<std::string>& overrides) {
   apply_overrides(document, overrides);  // a --set resolution=<name> picks the set
-  apply_resolution(document, file);
+  const std::string choice = apply_resolution(document, file);
   apply_overrides(document, overrides);  // the command line wins over the set
-  return resolve(document, file);
+  Scene scene = resolve(document, file);
+  if (!choice.empty()) scene.resolved.insert_or_assign("resolutions", toml::table{{choice, toml::table{}}});
+  return scene;
 }
 
 }  // namespace

@@ -218,7 +218,9 @@ TEST(Scene, ResolutionSetsApplyTheirOverrides) {
   EXPECT_DOUBLE_EQ(coarse.grid.cell_size, 1e-3);
   EXPECT_EQ(coarse.bodies[0].particles_per_cell, 1);
   EXPECT_EQ(coarse.resolved["resolution"].value<std::string>().value(), "coarse");
-  EXPECT_FALSE(coarse.resolved.contains("resolutions"));  // the resolved scene holds the values
+  // The resolved scene holds the values, and the chosen set emptied, so that it reads back.
+  EXPECT_EQ(coarse.resolved["resolutions"].as_table()->size(), 1u);
+  EXPECT_TRUE(coarse.resolved["resolutions"]["coarse"].as_table()->empty());
 
   const Scene fine = parse_scene(with_resolutions, "scene.toml", {"resolution=fine"});
   EXPECT_DOUBLE_EQ(fine.grid.cell_size, 0.25e-3);
@@ -227,6 +229,15 @@ TEST(Scene, ResolutionSetsApplyTheirOverrides) {
 
   const Scene mixed = parse_scene(with_resolutions, "scene.toml", {"resolution=fine", "grid.cell_size=0.5 mm"});
   EXPECT_DOUBLE_EQ(mixed.grid.cell_size, 0.5e-3);  // the command line wins
+}
+
+// A run's scene.resolved.toml with a resolution chosen reads back to the same scene (a resumed run
+// and `hvi measure` read it; it once named a set it no longer held and was refused).
+TEST(Scene, ResolvedSceneWithAResolutionReadsBack) {
+  const Scene fine = parse_scene(with_resolutions, "scene.toml", {"resolution=fine"});
+  const Scene again = parse_scene(resolved_text(fine), "scene.resolved.toml");
+  EXPECT_EQ(resolved_text(again), resolved_text(fine));
+  EXPECT_DOUBLE_EQ(again.grid.cell_size, 0.25e-3);
 }
 
 TEST(Scene, HolesMeasureNeedsAPanelOrAPlate) {
