@@ -1,6 +1,7 @@
 #pragma once
-// J2 (von Mises) plasticity of the far field's facesheets, small strain, at a quadrature point.
-// The strain splits additively, eps = eps_e + eps_p; sigma = lambda tr(eps_e) I + 2 mu eps_e; the
+// J2 (von Mises) plasticity of the far field's facesheets at a quadrature point. The strain (the
+// small strain, or with finite kinematics the Green-Lagrange strain, whose work conjugate S then
+// takes sigma's place) splits additively, eps = eps_e + eps_p; sigma = lambda tr(eps_e) I + 2 mu eps_e; the
 // yield stress follows the Johnson-Cook hardening curve of the facesheet's material at the
 // reference strain rate and room temperature (the paper's eq. 1 with both factors 1):
 //   sigma_y(alpha) = A + B alpha^n.

@@ -321,10 +321,12 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (hybrid && hybrid->far_field().plastic()) {
     const double alpha = hybrid->far_field().max_equivalent_plastic_strain();
     fmt::print("  far field: largest plastic strain {:.4g}, plastic work {:.6g} J\n", alpha, hybrid->far_field().plastic_work());
-    // Small-strain J2 stays meaningful to a few percent; beyond, the damage has reached the zone's edge.
+    // Beyond a few percent the damage has reached the zone's edge, which the far field cannot tear
+    // (and small-strain J2 stops meaning much).
     if (alpha > 0.05)
-      fmt::print("  warning: the far field's facesheets yield to a plastic strain of {:.3g} (small-strain theory); the "
-                 "damage reaches the MPM zone's edge: a larger [far_field] zone would hold it\n", alpha);
+      fmt::print("  warning: the far field's facesheets yield to a plastic strain of {:.3g}{}; the damage reaches "
+                 "the MPM zone's edge: a larger [far_field] zone would hold it\n",
+                 alpha, hybrid->far_field().finite_strain() ? "" : " (small-strain theory)");
   }
   record.initial_energy = initial_energy;
   auto measured = evaluate(scene.measures, s, record);
