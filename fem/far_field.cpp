@@ -145,9 +145,9 @@ struct FarField::Impl {
     return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
   }
 
-  // The strain at a quadrature point from the displacement gradient H: (H + H^T)/2, plus H^T H / 2
-  // (Green-Lagrange) with finite strain, less the committed plastic strain in plastic lanes.
-  Tensor<2, dim, VA> strain(unsigned cell, unsigned q, const Tensor<2, dim, VA>& H) const {
+  // The strain of the displacement gradient H: (H + H^T)/2, plus H^T H / 2 (Green-Lagrange) with
+  // finite strain.
+  Tensor<2, dim, VA> total_strain(const Tensor<2, dim, VA>& H) const {
     Tensor<2, dim, VA> e;
     for (int i = 0; i < dim; ++i)
       for (int j = 0; j < dim; ++j) {
@@ -155,6 +155,11 @@ struct FarField::Impl {
         if (spec.finite_strain)
           for (int k = 0; k < dim; ++k) e[i][j] += 0.5 * H[k][i] * H[k][j];
       }
+    return e;
+  }
+
+  // The total strain less the committed plastic strain in plastic lanes.
+  Tensor<2, dim, VA> elastic_strain(unsigned cell, unsigned q, Tensor<2, dim, VA> e) const {
     if (!any_plastic() || plastic_slot[cell] < 0) return e;
     static constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
     for (unsigned lane = 0; lane < W; ++lane) {
@@ -207,8 +212,8 @@ struct FarField::Impl {
       const bool plastic_batch = any_plastic() && plastic_slot[cell] >= 0;
       VA s_max = 1.0;
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
-        const Tensor<2, dim, VA> H = phi.get_gradient(q);
-        Tensor<2, dim, VA> S = orthotropic_stress(C, strain(cell, q, H));
+        const Tensor<2, dim, VA> H = phi.get_gradient(q), E = total_strain(H);
+        Tensor<2, dim, VA> S = orthotropic_stress(C, elastic_strain(cell, q, E));
         if (plastic_batch) return_to_yield(cell, q, phi.JxW(q), S);
         if (!spec.finite_strain) {
           phi.submit_gradient(S, q);
@@ -219,15 +224,12 @@ struct FarField::Impl {
         for (int i = 0; i < dim; ++i)
           for (int j = 0; j < dim; ++j)
             for (int k = 0; k < dim; ++k) P[i][j] += F[i][k] * S[k][j];
-        // |F|_2^2 = the largest eigenvalue of F^T F, bounded by Gershgorin's row sums (exact for a
-        // rotation: F^T F = I).
+        // |F|_2^2 = the largest eigenvalue of F^T F = I + 2E, bounded by Gershgorin's row sums
+        // (exact for a rotation, E = 0).
         for (int i = 0; i < dim; ++i) {
-          VA row = 0.0;
-          for (int j = 0; j < dim; ++j) {
-            VA c = 0.0;
-            for (int k = 0; k < dim; ++k) c += F[k][i] * F[k][j];
-            row += i == j ? c : std::abs(c);
-          }
+          VA row = 1.0 + 2.0 * E[i][i];
+          for (int j = 0; j < dim; ++j)
+            if (j != i) row += 2.0 * std::abs(E[i][j]);
           s_max = std::max(s_max, row);
         }
         phi.submit_gradient(P, q);
@@ -250,7 +252,7 @@ struct FarField::Impl {
     gradient_loop<p>(src, [&](FEEvaluation<dim, p, p + 1, dim, double>& phi, unsigned cell) {
       const auto& C = batch_stiffness[cell];
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
-        const Tensor<2, dim, VA> e = strain(cell, q, phi.get_gradient(q));
+        const Tensor<2, dim, VA> e = elastic_strain(cell, q, total_strain(phi.get_gradient(q)));
         const VA w = 0.5 * scalar_product(orthotropic_stress(C, e), e) * phi.JxW(q);
         for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
           batch_sum[cell] += w[lane];
