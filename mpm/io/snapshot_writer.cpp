@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -82,24 +83,36 @@ std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const s
 void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) { write_datasets(path, solver); }
 
 void SnapshotWriter::write(const Solver& solver) {
-  Entry entry{file_name(entries_.size()), solver.time(), solver.step_count(), solver.particles().size(), {}};
+  Entry entry{file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};
   fs::create_directories(directory_ / "snapshots");
   for (const auto& [name, shape] : write_datasets(directory_ / entry.file, solver))
     entry.attributes.push_back({name, shape.first, shape.second});
   entries_.push_back(std::move(entry));
+  ++next_index_;
   write_index();
 }
 
 void SnapshotWriter::resume(std::int64_t last_step) {
   entries_.clear();
-  for (std::size_t index = 0;; ++index) {
-    const fs::path path = directory_ / file_name(index);
-    if (!fs::exists(path)) break;
+  next_index_ = 0;
+  // Every particles_NNNNNN.h5 by its index NNNNNN: a directory pruned by hand (snapshots deleted
+  // to save space) keeps its numbering, and new snapshots never overwrite kept ones.
+  std::map<std::size_t, fs::path> files;
+  const fs::path dir = directory_ / "snapshots";
+  if (fs::is_directory(dir))
+    for (const auto& f : fs::directory_iterator(dir)) {
+      const std::string name = f.path().filename().string();
+      const std::string digits = name.substr(std::min(name.size(), std::size_t{10}), 6);
+      if (name.size() == 19 && name.starts_with("particles_") && name.ends_with(".h5") &&
+          digits.find_first_not_of("0123456789") == std::string::npos)
+        files.emplace(std::stoul(digits), f.path());
+    }
+  for (const auto& [index, path] : files) {
     bool keep = false;
     {
       Hdf5File file(path.string(), Hdf5File::Mode::read);
       const std::int64_t step = file.read_integer_attribute("step");
-      if (step <= last_step && entries_.size() == index) {
+      if (step <= last_step && (entries_.empty() || step >= entries_.back().step)) {
         Entry e{file_name(index), file.read_double_attribute("time"), step,
                 file.shape("position").first, {}};
         std::stringstream names(file.read_string_attribute("fields"));
@@ -108,6 +121,7 @@ void SnapshotWriter::resume(std::int64_t last_step) {
           e.attributes.push_back({name, static_cast<int>(file.shape(name).second), integer});
         }
         entries_.push_back(std::move(e));
+        next_index_ = index + 1;
         keep = true;
       }
     }

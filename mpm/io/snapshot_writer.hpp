@@ -18,11 +18,13 @@ class SnapshotWriter {
  public:
   explicit SnapshotWriter(std::filesystem::path run_directory);
 
-  // Writes the solver's current state as snapshot number `count()` and updates the index.
+  // Writes the solver's current state as the next snapshot and updates the index.
   void write(const Solver& solver);
   std::size_t count() const { return entries_.size(); }
 
-  // For a resumed run: re-reads the snapshots written up to `last_step` and deletes later ones.
+  // For a resumed run: re-reads the snapshots written up to `last_step` and deletes later ones;
+  // numbering continues after the last one kept (files deleted by hand leave gaps, and new
+  // snapshots never take their numbers).
   void resume(std::int64_t last_step);
 
   static std::string file_name(std::size_t index);
@@ -43,6 +45,7 @@ class SnapshotWriter {
   void write_index() const;
   std::filesystem::path directory_;
   std::vector<Entry> entries_;
+  std::size_t next_index_ = 0;  // of the next snapshot file
 };
 
 }  // namespace hvi::mpm::io

@@ -248,6 +248,21 @@ TEST(Snapshots, ResumeKeepsEarlierSnapshots) {
   EXPECT_EQ(times(index), times(index_after_two));
   resumed.write(*s);  // numbering continues at 2
   EXPECT_TRUE(fs::exists(dir.path() / io::SnapshotWriter::file_name(2)));
+
+  // Snapshots 0 and 1 deleted by hand (to save space), then resumed at step 20: the kept
+  // snapshot 2 keeps its number and the next one is 3, not 0.
+  fs::remove(dir.path() / io::SnapshotWriter::file_name(0));
+  fs::remove(dir.path() / io::SnapshotWriter::file_name(1));
+  io::SnapshotWriter pruned(dir.path());
+  pruned.resume(20);
+  EXPECT_EQ(pruned.count(), 1u);
+  pruned.write(*s);
+  EXPECT_FALSE(fs::exists(dir.path() / io::SnapshotWriter::file_name(0)));
+  EXPECT_TRUE(fs::exists(dir.path() / io::SnapshotWriter::file_name(2)));
+  EXPECT_TRUE(fs::exists(dir.path() / io::SnapshotWriter::file_name(3)));
+  const std::string pruned_index = read_file(dir.path() / "particles.xmf");
+  EXPECT_EQ(pruned_index.find("particles_000000"), std::string::npos);
+  EXPECT_NE(pruned_index.find("particles_000003"), std::string::npos);
 }
 
 // energy.csv of a resumed run keeps the rows up to the restart step.
