@@ -50,8 +50,28 @@ void attach_spacing(ParticleData& p, const std::vector<double>& volume0, const R
   }
 }
 
-std::size_t snapshot_index(const std::string& which, std::size_t count, const fs::path& run) {
-  if (which == "last") return count - 1;
+// The run's snapshots by index: DIR/snapshots/particles_NNNNNN.h5, NNNNNN the index (a run
+// directory pruned by hand may have gaps).
+std::map<std::size_t, fs::path> indexed_snapshots(const fs::path& run) {
+  std::map<std::size_t, fs::path> out;
+  for (const fs::path& file : analysis::snapshot_files(run)) {
+    const std::string stem = file.stem().string();  // particles_NNNNNN
+    const std::string digits = stem.substr(stem.find('_') + 1);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    out.emplace(std::stoul(digits), file);
+  }
+  return out;
+}
+
+std::string index_list(const std::map<std::size_t, fs::path>& snapshots) {
+  std::string s;
+  for (const auto& entry : snapshots) s += (s.empty() ? "" : ", ") + std::to_string(entry.first);
+  return s;
+}
+
+std::size_t snapshot_index(const std::string& which,
+                           const std::map<std::size_t, fs::path>& snapshots, const fs::path& run) {
+  if (which == "last") return snapshots.rbegin()->first;
   std::size_t pos = 0;
   long n = -1;
   try {
@@ -60,10 +80,10 @@ std::size_t snapshot_index(const std::string& which, std::size_t count, const fs
   }
   if (pos != which.size() || n < 0)
     throw std::invalid_argument(
-        fmt::format("--snapshot: expected an index or 'last', got '{}'", which));
-  if (static_cast<std::size_t>(n) >= count)
-    throw std::invalid_argument(
-        fmt::format("--snapshot {}: {} has snapshots 0 to {}", n, run.string(), count - 1));
+        fmt::format("--snapshot: expected an index, 'last' or 'all', got '{}'", which));
+  if (!snapshots.contains(static_cast<std::size_t>(n)))
+    throw std::invalid_argument(fmt::format("--snapshot {}: {} has snapshots {}", n, run.string(),
+                                            index_list(snapshots)));
   return static_cast<std::size_t>(n);
 }
 
@@ -89,19 +109,40 @@ Projectile find_projectile(const analysis::Snapshot& s) {
   return best;
 }
 
-}  // namespace
+// A run opened for measuring: its scene and its initial snapshot (initial positions, the
+// projectile, the facesheets' back faces).
+struct OpenRun {
+  RunInfo info;
+  std::map<std::size_t, fs::path> snapshots;
+  analysis::Snapshot first;
+};
 
-Measurements measure_run(const MeasureOptions& o) {
-  Measurements out;
-  out.run = o.run;
-  const fs::path scene_file = o.run / "scene.resolved.toml";
+OpenRun open_run(const fs::path& run) {
+  const fs::path scene_file = run / "scene.resolved.toml";
   if (!fs::exists(scene_file))
     throw std::invalid_argument(
-        fmt::format("{}: not a run directory (no scene.resolved.toml)", o.run.string()));
-  const RunInfo info = read_run_info(scene_file);
-  const auto files = analysis::snapshot_files(o.run);
-  if (files.empty()) throw std::invalid_argument(fmt::format("{}: no snapshots", o.run.string()));
-  const std::size_t index = snapshot_index(o.snapshot, files.size(), o.run);
+        fmt::format("{}: not a run directory (no scene.resolved.toml)", run.string()));
+  OpenRun r{read_run_info(scene_file), indexed_snapshots(run), {}};
+  if (r.snapshots.empty()) throw std::invalid_argument(fmt::format("{}: no snapshots", run.string()));
+  if (!r.snapshots.contains(0))
+    throw std::invalid_argument(fmt::format(
+        "{}: no snapshots/particles_000000.h5 (the state at step 0, which the measure needs for "
+        "the initial positions); the run has snapshots {}",
+        run.string(), index_list(r.snapshots)));
+  r.first = analysis::read_snapshot(r.snapshots.at(0));
+  if (r.first.step != 0)
+    throw std::invalid_argument(fmt::format("{}: written at step {}, expected the state at step 0",
+                                            r.snapshots.at(0).string(), r.first.step));
+  attach_spacing(r.first.particles, r.first.volume0, r.info, r.first.file);
+  return r;
+}
+
+// The measurements of one snapshot (`index` a key of run.snapshots).
+Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::size_t index) {
+  Measurements out;
+  out.run = o.run;
+  const RunInfo& info = run.info;
+  const analysis::Snapshot& first = run.first;
 
   // The facesheets.
   std::string front = o.front, rear = o.rear;
@@ -117,19 +158,17 @@ Measurements measure_run(const MeasureOptions& o) {
   const int front_body = front.empty() ? -1 : facesheet_body(info, front, "--front");
   const int rear_body = rear.empty() ? -1 : facesheet_body(info, rear, "--rear");
 
-  // Snapshots: the first for initial positions, the chosen one; both mirrored alike.
-  analysis::Snapshot first = analysis::read_snapshot(files.front());
-  analysis::Snapshot now = index == 0 ? first : analysis::read_snapshot(files[index]);
+  // The chosen snapshot, mirrored as the first.
+  analysis::Snapshot now = index == 0 ? first : analysis::read_snapshot(run.snapshots.at(index));
+  if (index != 0) attach_spacing(now.particles, now.volume0, info, now.file);
   out.snapshot_file = now.file;
   out.time = now.time;
   out.step = now.step;
-  attach_spacing(first.particles, first.volume0, info, first.file);
-  attach_spacing(now.particles, now.volume0, info, now.file);
   if (now.particles.failed.empty())
     out.notes.push_back(
         "no 'failed' field in the snapshot (no failure model): every particle counts as intact");
   std::int64_t stride = 1;
-  for (const auto* p : {&first.particles, &now.particles})
+  for (const ParticleData* p : std::array<const ParticleData*, 2>{&first.particles, &now.particles})
     for (const std::int64_t id : p->id) stride = std::max(stride, id + 1);
   out.mirror = o.mirror ? info.mirror : analysis::MirrorPlanes{};
   const ParticleData initial = analysis::mirrored(first.particles.view(), out.mirror, stride);
@@ -256,6 +295,22 @@ Measurements measure_run(const MeasureOptions& o) {
     add("D_hc", info.panels[0].cell_diameter);
   }
   add("S", out.core_height);
+  return out;
+}
+
+}  // namespace
+
+Measurements measure_run(const MeasureOptions& o) {
+  const OpenRun run = open_run(o.run);
+  if (o.snapshot == "all")
+    throw std::invalid_argument("--snapshot all: measure_history measures every snapshot");
+  return measure_snapshot(o, run, snapshot_index(o.snapshot, run.snapshots, o.run));
+}
+
+std::vector<Measurements> measure_history(const MeasureOptions& o) {
+  const OpenRun run = open_run(o.run);
+  std::vector<Measurements> out;
+  for (const auto& entry : run.snapshots) out.push_back(measure_snapshot(o, run, entry.first));
   return out;
 }
 

@@ -2,9 +2,11 @@
 // hvi measure RUN_DIR: the paper's hole measurements (Section 4.2, eqs. 8-12), the rear bulge and
 // the debris cloud of a finished run, from its resolved scene and snapshots. Writes
 // RUN_DIR/measurements.json and RUN_DIR/measurements.csv (one header line and one row; SI units;
-// the columns hvi fit reads).
+// the columns hvi fit reads). With --snapshot all, every snapshot: RUN_DIR/measurements_history.csv
+// (the same columns, one row per snapshot), to see whether the holes have settled.
 //   hvi measure runs/study_1g                      # last snapshot, panel facesheets
 //   hvi measure runs/plate --front plate --snapshot 5 --axis "1 mm,0 mm"
+//   hvi measure runs/validation_printed/case3 --snapshot all
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -19,7 +21,7 @@ namespace hvi::driver {
 
 struct MeasureOptions {
   std::filesystem::path run;
-  std::string snapshot = "last";  // an index N or "last"
+  std::string snapshot = "last";  // an index N (snapshots/particles_N.h5), "last" or "all"
   std::optional<std::array<double, 2>>
       axis;                 // impact point (x0, y0), m; default: the projectile's centroid
   double resolution = 0;    // raster pixel, m; 0: a quarter of the finest spacing
@@ -63,14 +65,18 @@ struct Measurements {
   std::optional<analysis::FacesheetResult> front_view, rear_view;
 };
 
-// Throws std::invalid_argument for bad input (no such run, body or snapshot).
+// Throws std::invalid_argument for bad input (no such run, body or snapshot; no initial snapshot).
 Measurements measure_run(const MeasureOptions& options);
+// Every snapshot of the run, in index order (options.snapshot is not read).
+std::vector<Measurements> measure_history(const MeasureOptions& options);
 
-// Prints the measurements (mm), writes measurements.json and .csv (SI); returns the exit code.
+// Prints the measurements (mm), writes measurements.json and .csv (SI); with --snapshot all, prints
+// one line per snapshot and writes measurements_history.csv. Returns the exit code.
 int measure_command(const MeasureOptions& options);
 
 // The files, for tests and scripts.
 void write_measurements(const Measurements& m, const std::filesystem::path& dir);
+void write_history(const std::vector<Measurements>& history, const std::filesystem::path& dir);
 // The printed report (mm).
 void print_measurements(const Measurements& m);
 // The headline numbers, SI, for a run's summary (the [[measure]] kind "holes"): front_perforated

@@ -94,6 +94,19 @@ std::vector<std::pair<std::string, std::string>> csv_cells(const Measurements& m
   return c;
 }
 
+// One header line, then one row per measurement.
+void write_csv(const std::vector<Measurements>& rows, const fs::path& file) {
+  std::ofstream out(file);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto cells = csv_cells(rows[r]);
+    if (r == 0)
+      for (std::size_t k = 0; k < cells.size(); ++k) out << (k ? "," : "") << cells[k].first;
+    out << '\n';
+    for (std::size_t k = 0; k < cells.size(); ++k) out << (k ? "," : "") << cells[k].second;
+  }
+  out << '\n';
+}
+
 // Material black, the hole grey, other empty pixels white; +y up.
 void write_pgm(const fs::path& file, const analysis::FacesheetResult& v) {
   const auto& r = v.raster;
@@ -177,15 +190,13 @@ void write_measurements(const Measurements& m, const fs::path& dir) {
     json << toml::json_formatter(j) << '\n';
   }
 
-  const auto cells = csv_cells(m);
-  std::string header, row;
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    header += (k ? "," : "") + cells[k].first;
-    row += (k ? "," : "") + cells[k].second;
-  }
-  std::ofstream(dir / "measurements.csv") << header << '\n' << row << '\n';
+  write_csv({m}, dir / "measurements.csv");
   if (m.front_view) write_pgm(dir / "top_view_front.pgm", *m.front_view);
   if (m.rear_view) write_pgm(dir / "top_view_rear.pgm", *m.rear_view);
+}
+
+void write_history(const std::vector<Measurements>& history, const fs::path& dir) {
+  write_csv(history, dir / "measurements_history.csv");
 }
 
 std::vector<std::pair<std::string, double>> headline_quantities(const Measurements& m) {
@@ -238,6 +249,25 @@ void print_measurements(const Measurements& m) {
 }
 
 int measure_command(const MeasureOptions& options) {
+  if (options.snapshot == "all") {
+    const std::vector<Measurements> history = measure_history(options);
+    fmt::print("hvi measure {}: {} snapshots\n", options.run.string(), history.size());
+    fmt::print("{:>10} {:>7} {:>10} {:>10} {:>11} {:>12}\n", "t (us)", "step", "D_f (mm)",
+               "D_r (mm)", "bulge (mm)", "debris (mg)");
+    auto hole = [](const std::optional<SheetMeasurement>& s) {
+      if (!s) return std::string{"-"};
+      if (!s->hole.perforated) return std::string{"NP"};
+      return s->hole.resolution > 0 ? fmt::format("{:.3f}", s->hole.D / mm) : std::string{"gone"};
+    };
+    for (const Measurements& m : history)
+      fmt::print("{:>10.4g} {:>7} {:>10} {:>10} {:>11} {:>12.4g}\n", m.time * 1e6, m.step,
+                 hole(m.front), hole(m.rear),
+                 m.bulge ? fmt::format("{:.3f}", m.bulge->displacement / mm) : std::string{"-"},
+                 m.debris.mass * 1e6);
+    write_history(history, options.run);
+    fmt::print("output: {}\n", (options.run / "measurements_history.csv").string());
+    return ExitCode::success;
+  }
   const Measurements m = measure_run(options);
   print_measurements(m);
   write_measurements(m, options.run);

@@ -253,6 +253,56 @@ TEST(MeasureCommand, PanelPerforatedRearAndTaper) {
   EXPECT_TRUE(half.rear->hole.open);
 }
 
+// --snapshot all: one row per snapshot, each the measure of that snapshot alone; the CSV has the
+// columns of measurements.csv. At t = 0 nothing is perforated, the bulge is exactly zero and the
+// projectile is in front of the panel (no debris).
+TEST(MeasureCommand, HistoryMeasuresEverySnapshot) {
+  const fs::path dir = make_run("history", true);
+  MeasureOptions o;
+  o.run = dir;
+  const std::vector<Measurements> history = measure_history(o);
+  ASSERT_EQ(history.size(), 2u);
+  EXPECT_EQ(history[0].step, 0);
+  EXPECT_FALSE(history[0].front->hole.perforated);
+  EXPECT_FALSE(history[0].rear->hole.perforated);
+  ASSERT_TRUE(history[0].bulge.has_value());
+  EXPECT_EQ(history[0].bulge->displacement, 0.0);
+  EXPECT_EQ(history[0].debris.mass, 0.0);
+  const Measurements last = measure_run(o);
+  EXPECT_EQ(history[1].step, 1000);
+  EXPECT_EQ(history[1].rear->hole.D, last.rear->hole.D);
+  EXPECT_EQ(history[1].front->hole.D, last.front->hole.D);
+  EXPECT_EQ(history[1].debris.mass, last.debris.mass);
+
+  write_history(history, dir);
+  write_measurements(last, dir);
+  const analysis::Table t = analysis::read_csv(dir / "measurements_history.csv");
+  const analysis::Table one = analysis::read_csv(dir / "measurements.csv");
+  EXPECT_EQ(t.columns, one.columns);
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows[0][t.column("rear_perforated")], "false");
+  EXPECT_EQ(t.rows[1], one.rows[0]);
+}
+
+// Snapshots are named by index: a run pruned by hand keeps its numbering, and one without the
+// state at step 0 (which gives the initial positions) is refused rather than measured against a
+// later state.
+TEST(MeasureCommand, SnapshotsAreFoundByTheirIndex) {
+  const fs::path dir = make_run("pruned", true);
+  fs::rename(dir / "snapshots" / "particles_000001.h5", dir / "snapshots" / "particles_000007.h5");
+  MeasureOptions o;
+  o.run = dir;
+  EXPECT_EQ(measure_run(o).step, 1000);  // last = 7
+  o.snapshot = "7";
+  EXPECT_EQ(measure_run(o).step, 1000);
+  o.snapshot = "1";
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+  o.snapshot = "last";
+  fs::remove(dir / "snapshots" / "particles_000000.h5");
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+  EXPECT_THROW(measure_history(o), std::invalid_argument);
+}
+
 TEST(MeasureCommand, BadInputIsReported) {
   const fs::path dir = make_run("bad", false);
   MeasureOptions o;
@@ -261,6 +311,10 @@ TEST(MeasureCommand, BadInputIsReported) {
   EXPECT_THROW(measure_run(o), std::invalid_argument);
   o.front = "";
   o.snapshot = "2";
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+  o.snapshot = "all";  // measure_history's, not measure_run's
+  EXPECT_THROW(measure_run(o), std::invalid_argument);
+  o.snapshot = "-1";
   EXPECT_THROW(measure_run(o), std::invalid_argument);
   o.run = dir / "missing";
   EXPECT_THROW(measure_run(o), std::invalid_argument);
