@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -210,6 +212,67 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
   return study;
 }
 
+namespace {
+
+// The first dotted key whose value differs between two resolved scenes ("" if none).
+std::string first_difference(const toml::table& a, const toml::table& b, const std::string& prefix = "") {
+  std::set<std::string> keys;
+  for (const auto& [k, v] : a) keys.insert(std::string(k.str()));
+  for (const auto& [k, v] : b) keys.insert(std::string(k.str()));
+  for (const auto& key : keys) {
+    const toml::node* x = a.get(key);
+    const toml::node* y = b.get(key);
+    const std::string path = prefix.empty() ? key : prefix + "." + key;
+    if (!x || !y) return path;
+    if (x->is_table() && y->is_table()) {
+      const std::string d = first_difference(*x->as_table(), *y->as_table(), path);
+      if (!d.empty()) return d;
+      continue;
+    }
+    std::ostringstream sx, sy;
+    x->visit([&](const auto& n) { sx << n; });
+    y->visit([&](const auto& n) { sy << n; });
+    if (sx.str() != sy.str()) return path;
+  }
+  return {};
+}
+
+// What to do with a run directory that already holds a run of this study's run: nothing new, run
+// on to a later end time, or refuse (it was run with another scene).
+struct Existing {
+  std::optional<double> end_time;  // continue to this end time
+  std::string conflict;            // why the directory cannot be used
+};
+
+Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool finished) {
+  Existing e;
+  if (!fs::exists(dir / "scene.resolved.toml")) return e;
+  const scene::Scene have = scene::load_scene((dir / "scene.resolved.toml").string());
+  // How far and how often it writes do not change what a run computes: not compared.
+  toml::table a = wanted.resolved, b = have.resolved;
+  for (toml::table* t : {&a, &b}) {
+    t->erase("output");
+    if (toml::table* r = (*t)["run"].as_table()) {
+      r->erase("end_time");
+      r->erase("max_steps");
+    }
+  }
+  const std::string key = first_difference(a, b);
+  if (!key.empty()) {
+    e.conflict = fmt::format("{} was run with another scene than the study's (key '{}' differs); remove it or "
+                             "choose another --out",
+                             dir.string(), key);
+  } else if (wanted.end_time > have.end_time || (!finished && wanted.end_time != have.end_time)) {
+    e.end_time = wanted.end_time;
+  } else if (wanted.end_time < have.end_time) {
+    e.conflict = fmt::format("{} ran to {:g} us but the study now ends at {:g} us; remove it to rerun", dir.string(),
+                             have.end_time * 1e6, wanted.end_time * 1e6);
+  }
+  return e;
+}
+
+}  // namespace
+
 int run_sweep(const SweepOptions& o) {
   Study study = load_study(o.study, o.overrides);
   if (!o.only.empty()) {
@@ -227,13 +290,23 @@ int run_sweep(const SweepOptions& o) {
     study.runs = std::move(kept);
   }
   // Every run's scene is checked before anything runs, so a typo in the last level does not
-  // surface hours into the study.
+  // surface hours into the study; so is every run already in --out: one run with another scene
+  // stops the sweep, and one with an earlier end time is run on (resumed) to the study's.
+  std::map<std::string, Existing> existing;
   for (const auto& run : study.runs) {
     try {
-      scene::load_scene(study.scene, run.overrides);
+      const scene::Scene wanted = scene::load_scene(study.scene, run.overrides);
+      if (!o.list) {
+        const fs::path dir = fs::path(o.out) / run.name;
+        existing[run.name] = compare_existing(dir, wanted, read_run_summary(dir).finished());
+      }
     } catch (const SceneError& e) {
       for (const auto& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.text());
       fmt::print(stderr, "hvi sweep: run '{}' of {} has an invalid scene; nothing was run\n", run.name, o.study);
+      return input_error;
+    }
+    if (!existing[run.name].conflict.empty()) {
+      fmt::print(stderr, "hvi sweep: {}; nothing was run\n", existing[run.name].conflict);
       return input_error;
     }
   }
@@ -250,19 +323,28 @@ int run_sweep(const SweepOptions& o) {
     const SweepRun& run = study.runs[k];
     const fs::path dir = fs::path(o.out) / run.name;
     RunSummary summary = read_run_summary(dir);
-    if (summary.finished()) {
+    const std::optional<double> extend = existing[run.name].end_time;
+    if (summary.finished() && !extend) {
       fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name, summary.wall_seconds);
     } else {
       std::vector<std::string> args;
       const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
       if (resume) {
         args = {"run", "--resume", dir.string()};
+        if (extend) {  // the measures of the earlier end are stale
+          args.insert(args.end(), {"--set", fmt::format("run.end_time={:.17g}", *extend)});
+          for (const char* f : {"measurements.csv", "measurements.json"}) fs::remove(dir / f);
+        }
       } else {
         args = {"run", study.scene, "--out", dir.string(), "--overwrite"};
         for (const auto& s : run.overrides) args.insert(args.end(), {"--set", s});
       }
       if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
-      fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name, resume ? "resuming" : "running");
+      fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name,
+                 !resume ? "running"
+                 : extend && summary.finished()
+                     ? fmt::format("running on to {:g} us", *extend * 1e6)
+                     : "resuming");
       std::fflush(stdout);
       const auto start = std::chrono::steady_clock::now();
       const int status = run_child(o.hvi, args, fs::path(o.out) / (run.name + ".log"));

@@ -95,6 +95,34 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string(), log), 0) << read(log);
   EXPECT_NE(read(log).find("v200_r15: done"), std::string::npos) << read(log);
   EXPECT_EQ(read(out / "sweep.csv"), before);
+
+  // A later end time in the study: every run is run on from its checkpoint (the sphere drifts
+  // 0.1 mm more per 100 m/s), and the table is rebuilt.
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us", log), 0)
+      << read(log);
+  EXPECT_NE(read(log).find("v200_r15: running on to 3 us"), std::string::npos) << read(log);
+  rows = table(out / "sweep.csv");
+  EXPECT_NEAR(front("v200_r1") - front("v100_r1"), 0.3e-3, 1e-12);
+  EXPECT_NEAR(front("v100_r1") - front("still"), 0.3e-3, 1e-12);
+  const hvi::scene::Scene extended = hvi::scene::load_scene((out / "v100_r1" / "scene.resolved.toml").string());
+  EXPECT_EQ(extended.end_time, 3e-6);
+
+  // Another output cadence is not another run.
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us --set output.interval=0.5us",
+                log),
+            0)
+      << read(log);
+  EXPECT_NE(read(log).find("v200_r15: done"), std::string::npos) << read(log);
+
+  // An earlier end time, or any other key changed, is refused before anything runs.
+  const std::string after = read(out / "sweep.csv");
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string(), log), 2);
+  EXPECT_NE(read(log).find("ran to 3 us but the study now ends at 2 us"), std::string::npos) << read(log);
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us --set grid.cfl=0.3",
+                log),
+            2);
+  EXPECT_NE(read(log).find("key 'grid.cfl' differs"), std::string::npos) << read(log);
+  EXPECT_EQ(read(out / "sweep.csv"), after);
 }
 
 TEST(Sweep, ABadLevelStopsTheSweepBeforeAnythingRuns) {
