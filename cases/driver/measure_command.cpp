@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "analysis/snapshot.hpp"
+#include "mpm/io/snapshot_writer.hpp"
 #include "cases/driver/run_info.hpp"
 
 namespace hvi::driver {
@@ -54,12 +55,8 @@ void attach_spacing(ParticleData& p, const std::vector<double>& volume0, const R
 // directory pruned by hand may have gaps).
 std::map<std::size_t, fs::path> indexed_snapshots(const fs::path& run) {
   std::map<std::size_t, fs::path> out;
-  for (const fs::path& file : analysis::snapshot_files(run)) {
-    const std::string stem = file.stem().string();  // particles_NNNNNN
-    const std::string digits = stem.substr(stem.find('_') + 1);
-    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    out.emplace(std::stoul(digits), file);
-  }
+  for (const fs::path& file : analysis::snapshot_files(run))
+    if (const auto index = mpm::io::SnapshotWriter::index_of(file)) out.emplace(*index, file);
   return out;
 }
 

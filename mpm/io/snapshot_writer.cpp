@@ -20,6 +20,14 @@ std::string SnapshotWriter::file_name(std::size_t index) {
   return fmt::format("snapshots/particles_{:06d}.h5", index);
 }
 
+std::optional<std::size_t> SnapshotWriter::index_of(const fs::path& file) {
+  const std::string name = file.filename().string();  // particles_NNNNNN.h5
+  if (name.size() != 19 || !name.starts_with("particles_") || !name.ends_with(".h5")) return {};
+  const std::string digits = name.substr(10, 6);
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return {};
+  return std::stoul(digits);
+}
+
 namespace {
 
 // Gathers a field in id order.
@@ -100,13 +108,8 @@ void SnapshotWriter::resume(std::int64_t last_step) {
   std::map<std::size_t, fs::path> files;
   const fs::path dir = directory_ / "snapshots";
   if (fs::is_directory(dir))
-    for (const auto& f : fs::directory_iterator(dir)) {
-      const std::string name = f.path().filename().string();
-      const std::string digits = name.substr(std::min(name.size(), std::size_t{10}), 6);
-      if (name.size() == 19 && name.starts_with("particles_") && name.ends_with(".h5") &&
-          digits.find_first_not_of("0123456789") == std::string::npos)
-        files.emplace(std::stoul(digits), f.path());
-    }
+    for (const auto& f : fs::directory_iterator(dir))
+      if (const auto index = index_of(f.path())) files.emplace(*index, f.path());
   for (const auto& [index, path] : files) {
     bool keep = false;
     {

@@ -4,6 +4,7 @@
 // index DIR/particles.xmf that ParaView opens as a time series. Only fields that exist in the run
 // are written, plus a few derived ones (density, pressure, von Mises stress, volume ratio).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ class SnapshotWriter {
   void resume(std::int64_t last_step);
 
   static std::string file_name(std::size_t index);
+  // The index of a snapshot file named as file_name() names them; nothing for other files.
+  static std::optional<std::size_t> index_of(const std::filesystem::path& file);
 
  private:
   struct Attribute {
