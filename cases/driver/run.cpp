@@ -45,7 +45,8 @@ std::string format_duration(double seconds) {
   return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
 }
 
-// One progress line on a terminal, rewritten in place; silent when not a TTY.
+// Progress: on a terminal one line rewritten in place; otherwise (a batch job's log) one line per
+// snapshot written.
 class Progress {
  public:
   explicit Progress(double end_time) : end_time_(end_time), tty_(isatty(STDERR_FILENO)) {}
@@ -53,15 +54,16 @@ class Progress {
     if (!tty_) return;
     const auto now = std::chrono::steady_clock::now();
     if (!force && now - last_ < std::chrono::milliseconds(500)) return;
-    const double wall = std::chrono::duration<double>(now - start_).count();
-    const double steps_per_s = (s.step_count() - first_step_) / std::max(wall, 1e-9);
-    const double sim_rate = (s.time() - first_time_) / std::max(wall, 1e-9);
-    const double eta = sim_rate > 0 ? (end_time_ - s.time()) / sim_rate : 0.0;
-    fmt::print(stderr, "\r  t = {:.4g} / {:.4g} s  step {}  dt {:.3g} s  {:.0f} steps/s  ETA {}   ",
-               s.time(), end_time_, s.step_count(), s.next_time_step(), steps_per_s, format_duration(eta));
+    fmt::print(stderr, "\r{}   ", line(s, now));
     std::fflush(stderr);
     last_ = now;
     active_ = true;
+  }
+  void snapshot_written(const mpm::Solver& s) {
+    if (tty_) return;
+    fmt::print("{}  (wall {})\n", line(s, std::chrono::steady_clock::now()),
+               format_duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count()));
+    std::fflush(stdout);
   }
   void start(const mpm::Solver& s) {
     first_step_ = s.step_count();
@@ -73,6 +75,15 @@ class Progress {
   }
 
  private:
+  std::string line(const mpm::Solver& s, std::chrono::steady_clock::time_point now) const {
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    const double steps_per_s = (s.step_count() - first_step_) / std::max(wall, 1e-9);
+    const double sim_rate = (s.time() - first_time_) / std::max(wall, 1e-9);
+    const double eta = sim_rate > 0 ? (end_time_ - s.time()) / sim_rate : 0.0;
+    const std::string rate = steps_per_s >= 100 ? fmt::format("{:.0f}", steps_per_s) : fmt::format("{:.3g}", steps_per_s);
+    return fmt::format("  t = {:.4g} / {:.4g} s  step {}  dt {:.3g} s  {} steps/s  ETA {}", s.time(), end_time_,
+                       s.step_count(), s.next_time_step(), rate, format_duration(eta));
+  }
   double end_time_;
   bool tty_, active_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
@@ -279,6 +290,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
         auto t = timer.scope("write snapshots");
         write_snapshots();
         output.advance(s.time());
+        progress.snapshot_written(s);
       }
       if (checkpoints.due(s.time())) {
         checkpoints.advance(s.time());
