@@ -6,9 +6,10 @@ sweep) and each run's snapshots and measurements.
 
 Figures: top views of both facesheets of each run (intact material; paper Fig. 13), the core's
 damage seen from the side (Fig. 11), D_f and D_r against impact energy (Fig. 15), the channel
-taper against impact energy (Fig. 16). Tables: every run; against Table 2 (Turner's experiments and
-the paper's MPM) for runs named case1..case7; against Table 5 (the paper's D_f) for runs named
-m<mass>g_v<speed>. REF_DIR holds turner_validation.csv and front_holes.csv
+taper against impact energy (Fig. 16), and D_r against time for runs with a hole history (hvi
+measure RUN --snapshot all). Tables: every run; against Table 2 (Turner's experiments and the
+paper's MPM) for runs named case1..case7; against Table 5 (the paper's D_f) for runs named
+m<mass>g_v<speed>; whether each hole history has settled. REF_DIR holds turner_validation.csv and front_holes.csv
 (cases/paper/reference).
 """
 import argparse
@@ -334,6 +335,57 @@ def energy_figures(runs, figures):
     return made
 
 
+SETTLED = 0.02  # largest |change| of D_r over the last fifth of a run for its hole to count as final
+
+
+def hole_history(run_dir):
+    """(t, D_f, D_r) per snapshot from RUN/measurements_history.csv, in time order; None for NP."""
+    path = run_dir / "measurements_history.csv"
+    if not path.exists():
+        return None
+    rows = [(number(r.get("time")), number(r.get("D_f")), number(r.get("D_r"))) for r in csv_rows(path)]
+    return sorted((t, f, r) for t, f, r in rows if t is not None)
+
+
+def history_section(runs, figures):
+    """The rear hole against time for every run with a history, and whether it has settled: D_r at
+    the end against D_r at 80% of the end time (the last snapshot at or before it)."""
+    histories = [(r["run"], h) for r in runs if (h := hole_history(r["dir"]))]
+    if not histories:
+        return None
+    lines = ["| run | rear opens at (us) | D_r at 0.8 t_end (mm) | D_r at t_end (mm) | change | settled |",
+             "|---|---|---|---|---|---|"]
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for name, h in histories:
+        t_end = h[-1][0]
+        opened = next((t for t, _, d in h if d is not None), None)
+        before = [d for t, _, d in h if t <= 0.8 * t_end + 1e-15]
+        early, late = before[-1] if before else None, h[-1][2]
+        if late is None:
+            change, settled = "—", "NP at the end"
+        elif early is None:
+            change, settled = "opened late", f"no (> {100 * SETTLED:.0f}%)"
+        else:
+            c = late / early - 1
+            change, settled = f"{100 * c:+.1f}%", "yes" if abs(c) <= SETTLED else f"no (> {100 * SETTLED:.0f}%)"
+        lines.append(f"| {name} | {'NP' if opened is None else f'{opened / 1e-6:.1f}'} | {fmt_mm(early)} | "
+                     f"{fmt_mm(late)} | {change} | {settled} |")
+        pts = [(t, d) for t, _, d in h if d is not None]
+        if pts:
+            ax.plot([t / 1e-6 for t, _ in pts], [d / MM for _, d in pts], "o-", ms=3, label=name)
+    ax.set_xlabel("t (us)")
+    ax.set_ylabel("D_r (mm)")
+    ax.grid(True, alpha=0.3)
+    if ax.lines:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(figures / "rear_hole_history.png", dpi=90)
+    plt.close(fig)
+    lines += ["", f"A hole counts as settled when D_r changed by at most {100 * SETTLED:.0f}% over the last fifth "
+              "of the run.", "", "![rear hole against time](report/rear_hole_history.png)"]
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dir", type=pathlib.Path)
@@ -352,6 +404,9 @@ def main():
     t5 = table5(runs, args.reference)
     if t5:
         md += ["## Against Table 5 (the paper's D_f)", "", t5, ""]
+    hist = history_section(runs, figures)
+    if hist:
+        md += ["## Hole histories (hvi measure RUN --snapshot all)", "", hist, ""]
     for title, png in energy_figures(runs, figures):
         md += [f"## {title}", "", f"![{title}](report/{png})", ""]
     if not args.no_run_figures:

@@ -3,6 +3,7 @@ the count of correct perforation outcomes, the mean |D_r error| (Table 2) and th
 against Table 5."""
 import pathlib
 import sys
+import tempfile
 import unittest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -46,6 +47,36 @@ class Table5(unittest.TestCase):
         self.assertIn("**1 of 2**", text)
         self.assertIn("10.60 / 11.02 (+4%)", text)
         self.assertIn("mean error -3.0%", text)
+
+
+class HoleHistory(unittest.TestCase):
+    def write(self, root, name, rows):
+        d = pathlib.Path(root) / name
+        d.mkdir()
+        lines = ["run,time,D_f,D_r"] + [f"{name},{t * 1e-6},{0.004},{'' if r is None else r * 1e-3}" for t, r in rows]
+        (d / "measurements_history.csv").write_text("\n".join(lines) + "\n")
+        return {"run": name, "dir": d}
+
+    def test_settled_growing_and_np(self):
+        # settled: 5.00 mm at 8 us (0.8 of 10 us), 5.05 at 10 us: +1.0%, within 2%.
+        # growing: opens at 6 us, 2.0 mm at 8 us, 2.5 at 10 us: +25%.
+        # late: NP at 8 us, opens at 10 us. np: never perforated.
+        with tempfile.TemporaryDirectory() as root:
+            runs = [self.write(root, "settled", [(0, None), (4, 4.0), (8, 5.0), (10, 5.05)]),
+                    self.write(root, "growing", [(0, None), (6, 1.0), (8, 2.0), (10, 2.5)]),
+                    self.write(root, "late", [(0, None), (8, None), (10, 1.5)]),
+                    self.write(root, "np", [(0, None), (10, None)]),
+                    {"run": "none", "dir": pathlib.Path(root) / "missing"}]
+            text = report.history_section(runs, pathlib.Path(root))
+            self.assertTrue((pathlib.Path(root) / "rear_hole_history.png").exists())
+        self.assertIn("| settled | 4.0 | 5.00 | 5.05 | +1.0% | yes |", text)
+        self.assertIn("| growing | 6.0 | 2.00 | 2.50 | +25.0% | no (> 2%) |", text)
+        self.assertIn("| late | 10.0 | — | 1.50 | opened late | no (> 2%) |", text)
+        self.assertIn("| np | NP | — | — | — | NP at the end |", text)
+        self.assertNotIn("| none |", text)
+
+    def test_no_histories_no_section(self):
+        self.assertIsNone(report.history_section([run("case1")], pathlib.Path("/nonexistent")))
 
 
 if __name__ == "__main__":
