@@ -22,13 +22,14 @@ std::string shell_quote(const std::string& s) {
   return out;
 }
 
-int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log) {
+int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log,
+              bool append) {
   std::string command = shell_quote(hvi);
   for (const auto& a : args) {
     command.push_back(' ');
     command.append(shell_quote(a));
   }
-  command.append(" > ");
+  command.append(append ? " >> " : " > ");
   command.append(shell_quote(log.string()));
   command.append(" 2>&1");
   const int status = std::system(command.c_str());

@@ -9,9 +9,10 @@
 
 namespace hvi::driver {
 
-// Runs `hvi ARGS...` with stdout and stderr to `log`; returns the exit code (-1 if it did not
-// exit normally).
-int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log);
+// Runs `hvi ARGS...` with stdout and stderr to `log` (appended to with `append`); returns the exit
+// code (-1 if it did not exit normally).
+int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log,
+              bool append = false);
 
 // `s` in single quotes for the shell (a quote inside becomes '\'').
 std::string shell_quote(const std::string& s);

@@ -347,7 +347,15 @@ int run_sweep(const SweepOptions& o) {
                      : "resuming");
       std::fflush(stdout);
       const auto start = std::chrono::steady_clock::now();
-      const int status = run_child(o.hvi, args, fs::path(o.out) / (run.name + ".log"));
+      // The log names the run (the base scene's title is the same for every run) and keeps the
+      // earlier parts of a resumed or extended run.
+      const fs::path run_log = fs::path(o.out) / (run.name + ".log");
+      {
+        std::ofstream header(run_log, resume ? std::ios::app : std::ios::trunc);
+        header << fmt::format("hvi sweep: run '{}' of {}: {} {}\n", run.name, o.study, study.scene,
+                              fmt::join(run.overrides, " "));
+      }
+      const int status = run_child(o.hvi, args, run_log, true);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       summary = read_run_summary(dir);
       if (status == interrupted) {
@@ -358,7 +366,7 @@ int run_sweep(const SweepOptions& o) {
       if (status != success || !summary.finished()) {
         status_of[run.name] = "failed";
         code = run_failed;
-        fmt::print("    failed after {:.1f} s (exit {}); see {}\n", wall, status, (fs::path(o.out) / (run.name + ".log")).string());
+        fmt::print("    failed after {:.1f} s (exit {}); see {}\n", wall, status, run_log.string());
       } else {
         fmt::print("    finished in {:.1f} s\n", wall);
       }

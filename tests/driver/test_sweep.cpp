@@ -101,6 +101,11 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us", log), 0)
       << read(log);
   EXPECT_NE(read(log).find("v200_r15: running on to 3 us"), std::string::npos) << read(log);
+  // The run's log names it, and keeps the first part above the second.
+  const std::string run_log = read(out / "v200_r15.log");
+  const auto first = run_log.find("hvi sweep: run 'v200_r15' of ");
+  EXPECT_EQ(first, 0u) << run_log;
+  EXPECT_NE(run_log.find("hvi sweep: run 'v200_r15' of ", first + 1), std::string::npos) << run_log;
   rows = table(out / "sweep.csv");
   EXPECT_NEAR(front("v200_r1") - front("v100_r1"), 0.3e-3, 1e-12);
   EXPECT_NEAR(front("v100_r1") - front("still"), 0.3e-3, 1e-12);
