@@ -1,6 +1,5 @@
 #include "analysis/snapshot.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -10,18 +9,6 @@
 namespace hvi::analysis {
 
 namespace fs = std::filesystem;
-
-std::vector<fs::path> snapshot_files(const fs::path& run_directory) {
-  std::vector<fs::path> files;
-  const fs::path dir = run_directory / "snapshots";
-  if (!fs::is_directory(dir)) return files;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    if (name.starts_with("particles_") && name.ends_with(".h5")) files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 Snapshot read_snapshot(const fs::path& file) {
   const mpm::io::Hdf5File h5(file.string(), mpm::io::Hdf5File::Mode::read);

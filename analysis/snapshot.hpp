@@ -1,7 +1,7 @@
 #pragma once
-// Reading a run's particle snapshots (mpm/io/snapshot_writer.hpp:
-// DIR/snapshots/particles_NNNNNN.h5, one dataset per field, particles in id order; attributes time
-// and step) into plain arrays.
+// Reading a run's particle snapshots into plain arrays (mpm/io/snapshot_writer.hpp writes them,
+// and SnapshotWriter::files lists them: DIR/snapshots/particles_NNNNNN.h5, one dataset per field,
+// particles in id order; attributes time and step).
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -17,9 +17,6 @@ struct Snapshot {
   ParticleData particles;        // position, id, body, mass, volume, failed, velocity (if written)
   std::vector<double> volume0;   // initial volume, m^3 (volume / volume_ratio)
 };
-
-// The snapshot files of a run directory, in order (index = NNNNNN).
-std::vector<std::filesystem::path> snapshot_files(const std::filesystem::path& run_directory);
 
 // Throws std::runtime_error (or mpm::io::Hdf5Error) for a missing or malformed file.
 Snapshot read_snapshot(const std::filesystem::path& file);

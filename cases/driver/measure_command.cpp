@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 
 #include "analysis/snapshot.hpp"
-#include "mpm/io/snapshot_writer.hpp"
 #include "cases/driver/run_info.hpp"
+#include "mpm/io/snapshot_writer.hpp"
 
 namespace hvi::driver {
 
@@ -49,15 +49,6 @@ void attach_spacing(ParticleData& p, const std::vector<double>& volume0, const R
                                               file.string(), p.body[k], info.bodies.size()));
     p.spacing[k] = info.spacing(static_cast<int>(p.body[k]), volume0[k]);
   }
-}
-
-// The run's snapshots by index: DIR/snapshots/particles_NNNNNN.h5, NNNNNN the index (a run
-// directory pruned by hand may have gaps).
-std::map<std::size_t, fs::path> indexed_snapshots(const fs::path& run) {
-  std::map<std::size_t, fs::path> out;
-  for (const fs::path& file : analysis::snapshot_files(run))
-    if (const auto index = mpm::io::SnapshotWriter::index_of(file)) out.emplace(*index, file);
-  return out;
 }
 
 std::string index_list(const std::map<std::size_t, fs::path>& snapshots) {
@@ -106,20 +97,28 @@ Projectile find_projectile(const analysis::Snapshot& s) {
   return best;
 }
 
-// A run opened for measuring: its scene and its initial snapshot (initial positions, the
-// projectile, the facesheets' back faces).
+// A run opened for measuring: its scene, its snapshots, and what every snapshot's measure takes
+// from the state at t = 0 (read and mirrored once, for one snapshot or all of them).
 struct OpenRun {
   RunInfo info;
   std::map<std::size_t, fs::path> snapshots;
   analysis::Snapshot first;
+  analysis::MirrorPlanes mirror;
+  std::int64_t stride = 1;  // id offset of mirror images (ids never grow: those at t = 0 bound all)
+  ParticleData initial;     // `first`, mirrored
+  Projectile projectile;
+  std::unordered_map<std::int64_t, double> initial_z;  // id -> z at t = 0
 };
 
-OpenRun open_run(const fs::path& run) {
+OpenRun open_run(const MeasureOptions& o) {
+  const fs::path& run = o.run;
   const fs::path scene_file = run / "scene.resolved.toml";
   if (!fs::exists(scene_file))
     throw std::invalid_argument(
         fmt::format("{}: not a run directory (no scene.resolved.toml)", run.string()));
-  OpenRun r{read_run_info(scene_file), indexed_snapshots(run), {}};
+  OpenRun r;
+  r.info = read_run_info(scene_file);
+  r.snapshots = mpm::io::SnapshotWriter::files(run);
   if (r.snapshots.empty()) throw std::invalid_argument(fmt::format("{}: no snapshots", run.string()));
   if (!r.snapshots.contains(0))
     throw std::invalid_argument(fmt::format(
@@ -131,6 +130,12 @@ OpenRun open_run(const fs::path& run) {
     throw std::invalid_argument(fmt::format("{}: written at step {}, expected the state at step 0",
                                             r.snapshots.at(0).string(), r.first.step));
   attach_spacing(r.first.particles, r.first.volume0, r.info, r.first.file);
+  for (const std::int64_t id : r.first.particles.id) r.stride = std::max(r.stride, id + 1);
+  r.mirror = o.mirror ? r.info.mirror : analysis::MirrorPlanes{};
+  r.initial = analysis::mirrored(r.first.particles.view(), r.mirror, r.stride);
+  r.projectile = find_projectile(r.first);
+  for (std::size_t k = 0; k < r.initial.size(); ++k)
+    r.initial_z.emplace(r.initial.id[k], r.initial.position[3 * k + 2]);
   return r;
 }
 
@@ -164,15 +169,16 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
   if (now.particles.failed.empty())
     out.notes.push_back(
         "no 'failed' field in the snapshot (no failure model): every particle counts as intact");
-  std::int64_t stride = 1;
-  for (const ParticleData* p : std::array<const ParticleData*, 2>{&first.particles, &now.particles})
-    for (const std::int64_t id : p->id) stride = std::max(stride, id + 1);
-  out.mirror = o.mirror ? info.mirror : analysis::MirrorPlanes{};
-  const ParticleData initial = analysis::mirrored(first.particles.view(), out.mirror, stride);
-  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, stride);
+  for (const std::int64_t id : now.particles.id)
+    if (id >= run.stride)
+      throw std::invalid_argument(
+          fmt::format("{}: particle id {} is not in the t = 0 snapshot", now.file.string(), id));
+  out.mirror = run.mirror;
+  const ParticleData& initial = run.initial;
+  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, run.stride);
 
-  // The projectile and the impact axis.
-  const Projectile projectile = find_projectile(first);
+  // The impact axis.
+  const Projectile& projectile = run.projectile;
   if (o.axis) {
     out.axis = *o.axis;
   } else {
@@ -248,11 +254,8 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     // Not debris: the sheet's own attached material (a bulge, petals), and material that was
     // behind the face from the start (the rest of a panel when only --front is named).
     std::vector<std::size_t> excluded = rear_body >= 0 ? rear_attached : front_attached;
-    std::unordered_map<std::int64_t, double> initial_z;
-    for (std::size_t k = 0; k < initial.size(); ++k)
-      initial_z.emplace(initial.id[k], initial.position[3 * k + 2]);
     for (std::size_t k = 0; k < current.size(); ++k)
-      if (initial_z.at(current.id[k]) < z_back - d.threshold) excluded.push_back(k);
+      if (run.initial_z.at(current.id[k]) < z_back - d.threshold) excluded.push_back(k);
     out.debris = analysis::debris_cloud(current.view(), d, excluded);
     out.debris_behind = info.bodies[behind].name;
     out.debris_back_face = z_back;
@@ -298,14 +301,14 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
 }  // namespace
 
 Measurements measure_run(const MeasureOptions& o) {
-  const OpenRun run = open_run(o.run);
+  const OpenRun run = open_run(o);
   if (o.snapshot == "all")
     throw std::invalid_argument("--snapshot all: measure_history measures every snapshot");
   return measure_snapshot(o, run, snapshot_index(o.snapshot, run.snapshots, o.run));
 }
 
 std::vector<Measurements> measure_history(const MeasureOptions& o) {
-  const OpenRun run = open_run(o.run);
+  const OpenRun run = open_run(o);
   std::vector<Measurements> out;
   for (const auto& entry : run.snapshots) out.push_back(measure_snapshot(o, run, entry.first));
   return out;

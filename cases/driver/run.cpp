@@ -61,8 +61,8 @@ class Progress {
   }
   void snapshot_written(const mpm::Solver& s) {
     if (tty_) return;
-    fmt::print("{}  (wall {})\n", line(s, std::chrono::steady_clock::now()),
-               format_duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count()));
+    const auto now = std::chrono::steady_clock::now();
+    fmt::print("{}  (wall {})\n", line(s, now), format_duration(std::chrono::duration<double>(now - start_).count()));
     std::fflush(stdout);
   }
   void start(const mpm::Solver& s) {

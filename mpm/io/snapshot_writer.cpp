@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -20,12 +19,17 @@ std::string SnapshotWriter::file_name(std::size_t index) {
   return fmt::format("snapshots/particles_{:06d}.h5", index);
 }
 
-std::optional<std::size_t> SnapshotWriter::index_of(const fs::path& file) {
-  const std::string name = file.filename().string();  // particles_NNNNNN.h5
-  if (name.size() != 19 || !name.starts_with("particles_") || !name.ends_with(".h5")) return {};
-  const std::string digits = name.substr(10, 6);
-  if (digits.find_first_not_of("0123456789") != std::string::npos) return {};
-  return std::stoul(digits);
+std::map<std::size_t, fs::path> SnapshotWriter::files(const fs::path& run_directory) {
+  std::map<std::size_t, fs::path> out;
+  const fs::path dir = run_directory / "snapshots";
+  if (!fs::is_directory(dir)) return out;
+  for (const auto& f : fs::directory_iterator(dir)) {
+    const std::string name = f.path().filename().string();  // particles_NNNNNN.h5
+    if (name.size() != 19 || !name.starts_with("particles_") || !name.ends_with(".h5")) continue;
+    const std::string digits = name.substr(10, 6);
+    if (digits.find_first_not_of("0123456789") == std::string::npos) out.emplace(std::stoul(digits), f.path());
+  }
+  return out;
 }
 
 namespace {
@@ -103,14 +107,9 @@ void SnapshotWriter::write(const Solver& solver) {
 void SnapshotWriter::resume(std::int64_t last_step) {
   entries_.clear();
   next_index_ = 0;
-  // Every particles_NNNNNN.h5 by its index NNNNNN: a directory pruned by hand (snapshots deleted
-  // to save space) keeps its numbering, and new snapshots never overwrite kept ones.
-  std::map<std::size_t, fs::path> files;
-  const fs::path dir = directory_ / "snapshots";
-  if (fs::is_directory(dir))
-    for (const auto& f : fs::directory_iterator(dir))
-      if (const auto index = index_of(f.path())) files.emplace(*index, f.path());
-  for (const auto& [index, path] : files) {
+  // By index: a directory pruned by hand (snapshots deleted to save space) keeps its numbering,
+  // and new snapshots never overwrite kept ones.
+  for (const auto& [index, path] : files(directory_)) {
     bool keep = false;
     {
       Hdf5File file(path.string(), Hdf5File::Mode::read);

@@ -4,7 +4,7 @@
 // index DIR/particles.xmf that ParaView opens as a time series. Only fields that exist in the run
 // are written, plus a few derived ones (density, pressure, von Mises stress, volume ratio).
 #include <filesystem>
-#include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,8 +29,9 @@ class SnapshotWriter {
   void resume(std::int64_t last_step);
 
   static std::string file_name(std::size_t index);
-  // The index of a snapshot file named as file_name() names them; nothing for other files.
-  static std::optional<std::size_t> index_of(const std::filesystem::path& file);
+  // The snapshot files of a run directory by their index NNNNNN (a directory pruned by hand has
+  // gaps); other files are left out.
+  static std::map<std::size_t, std::filesystem::path> files(const std::filesystem::path& run_directory);
 
  private:
   struct Attribute {
