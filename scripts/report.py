@@ -57,7 +57,7 @@ def load_runs(out):
         row["dir"] = out
         summary = json.loads((out / "summary.json").read_text()) if (out / "summary.json").exists() else {}
         row["status"] = summary.get("status", "")
-        row["wall_seconds"] = str(summary.get("wall_seconds", ""))
+        row["wall_seconds"] = str(summary.get("wall_seconds_total", summary.get("wall_seconds", "")))
         row["particles"] = str(summary.get("particles", ""))
         row["energy_balance"] = str(summary.get("energy_balance", ""))
         return [row]

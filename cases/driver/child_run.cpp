@@ -42,7 +42,8 @@ RunSummary read_run_summary(const std::filesystem::path& run_dir) {
   if (!std::filesystem::exists(file)) return s;
   const toml::table t = toml::parse_file(file.string());
   s.status = t["status"].value_or(std::string{});
-  s.wall_seconds = t["wall_seconds"].value_or(0.0);
+  // All the invocations of a resumed run, where its checkpoint recorded them.
+  s.wall_seconds = t["wall_seconds_total"].value_or(t["wall_seconds"].value_or(0.0));
   s.peak_memory = static_cast<double>(t["peak_memory_bytes"].value_or(std::int64_t{0}));
   s.particles = static_cast<double>(t["particles"].value_or(std::int64_t{0}));
   s.steps = static_cast<double>(t["steps"].value_or(std::int64_t{0}));

@@ -62,7 +62,12 @@ std::string compare_runs(const CompareOptions& options) {
   row("far-field nodes", number(a, "far_field_nodes"), number(b, "far_field_nodes"));
   row("steps", number(a, "steps"), number(b, "steps"));
   row("threads", number(a, "threads"), number(b, "threads"));
-  row("wall time (s)", number(a, "wall_seconds"), number(b, "wall_seconds"));
+  // A resumed run's cost is all its invocations (wall_seconds_total), where its checkpoints recorded them.
+  auto wall = [&](const toml::table& t) {
+    const auto total = number(t, "wall_seconds_total");
+    return total ? total : number(t, "wall_seconds");
+  };
+  row("wall time (s)", wall(a), wall(b));
   row("particle-steps/s", number(a, "particle_steps_per_second"), number(b, "particle_steps_per_second"));
   auto mb = [](std::optional<double> bytes) { return bytes ? std::optional<double>(*bytes / 1e6) : std::nullopt; };
   row("peak memory (MB)", mb(number(a, "peak_memory_bytes")), mb(number(b, "peak_memory_bytes")));

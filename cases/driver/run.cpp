@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -212,6 +214,9 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   double initial_energy = 0.0;
   RunRecord record;  // what the scene's [[measure]]s need beyond the final state
   const auto particle_count = s.particles().size();
+  // Wall time of the time loop in all the invocations that made this state (a run resumed, run on
+  // or interrupted several times costs their sum); NaN: a checkpoint from before hvi recorded it.
+  double earlier_wall = 0.0;
 
   if (options.resume) {
     snapshots.resume(s.step_count());
@@ -220,6 +225,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     checkpoints.next = extras.at("next_checkpoint_time");
     initial_energy = extras.at("initial_energy");
     record.peak_pressure = extras.at("peak_pressure");
+    const auto recorded = extras.find("wall_seconds");
+    earlier_wall = recorded != extras.end() ? recorded->second : std::numeric_limits<double>::quiet_NaN();
     fmt::print("hvi: resuming {} at step {}, t = {:.6g} s ({} particles, {} threads)\n", dir.string(),
                s.step_count(), s.time(), particle_count, threads);
   } else {
@@ -241,24 +248,28 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   }
 
   std::int64_t last_checkpoint_step = s.step_count();
-  auto checkpoint = [&] {
+  auto wall_start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
+  // wall: this invocation's time-loop seconds up to the state written.
+  auto checkpoint = [&](double wall) {
     auto t = timer.scope("write checkpoint");
     last_checkpoint_step = s.step_count();
     mpm::io::CheckpointExtras extras{{"next_output_time", output.next},
                                      {"next_checkpoint_time", checkpoints.next},
                                      {"initial_energy", initial_energy},
                                      {"peak_pressure", record.peak_pressure}};
+    if (!std::isnan(earlier_wall)) extras["wall_seconds"] = earlier_wall + wall;
     probes->save(extras);
     mpm::io::write_checkpoint(dir / "checkpoint.h5", s, extras);
   };
   // A checkpoint exists from the start, so a run that fails always leaves one from before.
-  if (!options.resume) checkpoint();
+  if (!options.resume) checkpoint(0.0);
 
   interrupt_requested = false;
   auto previous_handler = std::signal(SIGINT, on_interrupt);
   Progress progress(scene.end_time);
   progress.start(s);
-  const auto wall_start = std::chrono::steady_clock::now();
+  wall_start = std::chrono::steady_clock::now();
   const std::int64_t first_step = s.step_count();
   std::int64_t reported_removals = 0;
   int code = success;
@@ -294,11 +305,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       }
       if (checkpoints.due(s.time())) {
         checkpoints.advance(s.time());
-        checkpoint();
+        checkpoint(elapsed());
       }
       progress.update(s);
     }
-    checkpoint();  // the end state, or where an interruption or max_steps stopped the run
   } catch (const mpm::SolverError& e) {
     progress.finish();
     fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
@@ -309,11 +319,12 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     std::signal(SIGINT, previous_handler);
     return run_failed;
   }
+  const double wall = elapsed();
+  checkpoint(wall);  // the end state, or where an interruption or max_steps stopped the run
   progress.update(s, true);
   progress.finish();
   std::signal(SIGINT, previous_handler);
 
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   const std::int64_t steps = s.step_count() - first_step;
   const mpm::EnergyReport e = s.energy();
   const double balance = initial_energy != 0.0 ? (e.total() - initial_energy) / initial_energy : 0.0;
@@ -322,6 +333,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
              code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
              s.time(), s.step_count(), steps, wall, rate, threads, peak_memory / 1e6);
+  if (options.resume)
+    fmt::print("  wall time of all the invocations that made this run: {}\n",
+               std::isnan(earlier_wall) ? std::string("unknown (its checkpoint predates the record)")
+                                        : fmt::format("{:.2f} s", earlier_wall + wall));
   fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}{}; balance {:+.3f}%\n",
              initial_energy, e.total(), e.kinetic, e.internal, e.dissipated, e.removed,
              hybrid ? fmt::format(" + far field kinetic {:.6g} + strain {:.6g}", e.coupled_kinetic, e.coupled_strain) : "",
@@ -376,6 +391,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                       {"removed_particles", s.removed().particles},
                       {"removed_mass", s.removed().mass},
                       {"status", status}};
+  if (!std::isnan(earlier_wall)) summary.insert("wall_seconds_total", earlier_wall + wall);
   if (hybrid) {
     summary.insert("far_field_nodes", static_cast<std::int64_t>(hybrid->far_field().node_count()));
     summary.insert("far_field_elements", static_cast<std::int64_t>(hybrid->far_field().cell_count()));

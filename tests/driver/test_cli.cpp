@@ -121,8 +121,16 @@ TEST(Cli, ResumedRunMatchesUninterruptedRun) {
   // Stop after 37 steps (between snapshots and between energy rows), then resume.
   ASSERT_EQ(run("run " + scene + " --out " + parts.string() + " --threads 2 --set run.max_steps=37"), 0);
   EXPECT_FALSE(fs::exists(parts / "snapshots" / "particles_000004.h5"));
+  const double first_wall = summary_number(parts, "wall_seconds");
+  EXPECT_EQ(summary_number(parts, "wall_seconds_total"), first_wall);  // one invocation so far
   ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
   expect_same_output(full, parts);
+  // The run's cost is both invocations': the first one's, recorded in its last checkpoint, plus
+  // the resumed one's (to the last bit: the same doubles added).
+  const double second_wall = summary_number(parts, "wall_seconds");
+  EXPECT_GT(second_wall, 0.0);
+  EXPECT_EQ(summary_number(parts, "wall_seconds_total"), first_wall + second_wall);
+  EXPECT_EQ(summary_number(full, "wall_seconds_total"), summary_number(full, "wall_seconds"));
 }
 
 // A run that goes wrong stops at the first bad step with a message naming the particle, body,
@@ -325,14 +333,15 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   fs::create_directories(b);
   std::ofstream(a / "summary.toml") << "status = 'finished'\nwall_seconds = 100.0\nparticles = 1000\n"
                                        "[measures]\nD_f = 10.0\nD_r = 20.0\n";
-  std::ofstream(b / "summary.toml") << "status = 'finished'\nwall_seconds = 20.0\nparticles = 100\nfar_field_nodes = 50\n"
+  std::ofstream(b / "summary.toml") << "status = 'finished'\nwall_seconds = 20.0\nwall_seconds_total = 30.0\nparticles = 100\nfar_field_nodes = 50\n"
                                        "[measures]\nD_f = 10.5\n";
   const fs::path table = scratch("compare_out.md");
   ASSERT_EQ(std::system((hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()), 0);
   const std::string t = read(table);
   EXPECT_NE(t.find("| D_f | 10 | 10.5 | +5.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| D_r | 20 | — |  |"), std::string::npos) << t;
-  EXPECT_NE(t.find("| wall time (s) | 100 | 20 | -80.00% |"), std::string::npos) << t;
+  // B was resumed: its cost is all its invocations (wall_seconds_total), A's its one.
+  EXPECT_NE(t.find("| wall time (s) | 100 | 30 | -70.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| far-field nodes | — | 50 |  |"), std::string::npos) << t;
   EXPECT_EQ(run("compare " + a.string() + " " + (b / "missing").string()), 2);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <toml++/toml.h>
 
 #include "cases/driver/scene.hpp"
 #include "cases/driver/sweep_command.hpp"
@@ -98,6 +99,7 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
 
   // A later end time in the study: every run is run on from its checkpoint (the sphere drifts
   // 0.1 mm more per 100 m/s), and the table is rebuilt.
+  const double first_wall = std::stod(rows["v200_r15"]["wall_seconds"]);
   ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us", log), 0)
       << read(log);
   EXPECT_NE(read(log).find("v200_r15: running on to 3 us"), std::string::npos) << read(log);
@@ -108,6 +110,11 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   EXPECT_NE(run_log.find("hvi sweep: run 'v200_r15' of ", first + 1), std::string::npos) << run_log;
   rows = table(out / "sweep.csv");
   EXPECT_NEAR(front("v200_r1") - front("v100_r1"), 0.3e-3, 1e-12);
+  // Its wall time is what both parts cost, not the run-on's alone (sweep.csv keeps 10 digits).
+  const toml::table summary = toml::parse_file((out / "v200_r15" / "summary.toml").string());
+  const double run_on_wall = summary["wall_seconds"].value_or(0.0);
+  EXPECT_GT(run_on_wall, 0.0);
+  EXPECT_NEAR(std::stod(rows["v200_r15"]["wall_seconds"]), first_wall + run_on_wall, 1e-9 * (first_wall + run_on_wall));
   EXPECT_NEAR(front("v100_r1") - front("still"), 0.3e-3, 1e-12);
   const hvi::scene::Scene extended = hvi::scene::load_scene((out / "v100_r1" / "scene.resolved.toml").string());
   EXPECT_EQ(extended.end_time, 3e-6);
