@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -124,11 +125,37 @@ void write_run_info(const fs::path& dir, const RunOptions& options, int threads,
                    {"git_revision", hvi::git_revision},
                    {"command", options.command_line},
                    {"threads", threads},
-                   {"resumed", options.resume},
                    {"bodies", bodies},
                    {"materials", materials}};
-  std::ofstream out(dir / (options.resume ? "run.resumed.json" : "run.json"));
+  std::ofstream out(dir / "run.json");
   out << toml::json_formatter(info) << '\n';
+}
+
+// resumes.jsonl: one line per resume, appended, so a run resumed or run on several times (perhaps
+// by other builds) keeps what made each part: revision, command, threads, and the step and time
+// it continued from.
+void append_resume_record(const fs::path& dir, const RunOptions& options, int threads, std::int64_t step, double time) {
+  const toml::table info{{"git_revision", hvi::git_revision},
+                         {"command", options.command_line},
+                         {"threads", threads},
+                         {"step", step},
+                         {"time", time}};
+  std::ostringstream json;
+  json << toml::json_formatter(info);
+  // One line: the formatter's line breaks and indents lie between tokens (a newline inside a
+  // string is written as \n), so dropping them leaves the same JSON.
+  std::string line;
+  bool indent = false;
+  for (const char c : json.str()) {
+    if (c == '\n') {
+      indent = true;
+      continue;
+    }
+    if (indent && c == ' ') continue;
+    indent = false;
+    line.push_back(c);
+  }
+  std::ofstream(dir / "resumes.jsonl", std::ios::app) << line << '\n';
 }
 
 void write_timing(const fs::path& dir, const mpm::PhaseTimer& timer) {
@@ -190,7 +217,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
 
   if (options.overwrite && !options.resume) {
     for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
-                          "run.resumed.json", "failure.h5",
+                          "run.resumed.json", "resumes.jsonl", "failure.h5",
                           "measurements.json", "measurements.csv", "measure.log", "top_view_front.pgm", "top_view_rear.pgm",
                           "far_field.pvd", "probes.csv"})
       fs::remove(dir / f);
@@ -199,7 +226,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   }
   fs::create_directories(dir);
   write_text(dir / "scene.resolved.toml", scene::resolved_text(scene));
-  write_run_info(dir, options, threads, scene, solver->body_names());
+  if (options.resume)
+    append_resume_record(dir, options, threads, solver->step_count(), solver->time());
+  else
+    write_run_info(dir, options, threads, scene, solver->body_names());
 
   mpm::Solver& s = *solver;
   mpm::PhaseTimer& timer = s.timer();

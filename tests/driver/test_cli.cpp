@@ -123,14 +123,29 @@ TEST(Cli, ResumedRunMatchesUninterruptedRun) {
   EXPECT_FALSE(fs::exists(parts / "snapshots" / "particles_000004.h5"));
   const double first_wall = summary_number(parts, "wall_seconds");
   EXPECT_EQ(summary_number(parts, "wall_seconds_total"), first_wall);  // one invocation so far
+  // Resumed twice: to step 50, then to the end.
+  ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=50"), 0);
+  const double second_wall = summary_number(parts, "wall_seconds");
   ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
   expect_same_output(full, parts);
-  // The run's cost is both invocations': the first one's, recorded in its last checkpoint, plus
-  // the resumed one's (to the last bit: the same doubles added).
-  const double second_wall = summary_number(parts, "wall_seconds");
+  // The run's cost is all three invocations': the earlier ones', recorded in the last checkpoint,
+  // plus the last one's (to the last bit: the same doubles added in the same order).
+  const double third_wall = summary_number(parts, "wall_seconds");
   EXPECT_GT(second_wall, 0.0);
-  EXPECT_EQ(summary_number(parts, "wall_seconds_total"), first_wall + second_wall);
+  EXPECT_GT(third_wall, 0.0);
+  EXPECT_EQ(summary_number(parts, "wall_seconds_total"), (first_wall + second_wall) + third_wall);
   EXPECT_EQ(summary_number(full, "wall_seconds_total"), summary_number(full, "wall_seconds"));
+  // Each resume is a line of resumes.jsonl, with where it continued from and what ran it.
+  std::ifstream resumes(parts / "resumes.jsonl");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(resumes, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_NE(lines[0].find("\"step\" : 37,"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find("\"step\" : 50,"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("\"command\" : \"" + hvi + " run --resume "), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("\"threads\" : 1"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("\"git_revision\" : \""), std::string::npos) << lines[1];
+  EXPECT_FALSE(fs::exists(full / "resumes.jsonl"));
 }
 
 // A run that goes wrong stops at the first bad step with a message naming the particle, body,
