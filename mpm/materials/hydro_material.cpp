@@ -20,7 +20,7 @@ constexpr const char* plastic_work = "plastic_work";    // J/kg
 constexpr const char* viscous_work = "viscous_work";    // J/kg
 constexpr const char* temperature = "temperature";      // K
 constexpr const char* damage = "damage";
-constexpr const char* failed = "failed";                // 0 intact, 1 failed
+constexpr const char* failed = "failed";                // failure_state: 0 intact, 1 failed, 2 eroded
 
 // Volume at the start of the step, from the end-of-step volume and det(I + dt L).
 double volume_before(const Particles& P, std::size_t p, double dt) {
@@ -82,16 +82,18 @@ double HydroMaterial::sound_speed(double rho_current, double p, bool is_failed) 
   return std::sqrt(bulk2 + (shear ? 4.0 * G_ / (3.0 * rho) : 0.0));
 }
 
+double HydroMaterial::signal_speed(const Particles& P, std::size_t p, const double* pe, const double* fl) const {
+  if (fl && fl[p] == failure_state::eroded) return speed(P, p);
+  return sound_speed(P.mass[p] / P.volume[p], pe[p], fl && fl[p] > 0.0) + speed(P, p);
+}
+
 double HydroMaterial::max_signal_speed(const Particles& P, ParticleRange r) const {
-  const auto& pe = P.field(eos_pressure);
-  const std::vector<double>* fl = can_fail() ? &P.field(failed) : nullptr;
+  const double* pe = P.field(eos_pressure).data();
+  const double* fl = can_fail() ? P.field(failed).data() : nullptr;
   double result = 0.0;
   const Span s(r);
 #pragma omp parallel for reduction(max : result) schedule(static)
-  for (std::int64_t p = s.begin; p < s.end; ++p) {
-    const double rho = P.mass[p] / P.volume[p];
-    result = std::max(result, sound_speed(rho, pe[p], fl && (*fl)[p] > 0.0) + speed(P, p));
-  }
+  for (std::int64_t p = s.begin; p < s.end; ++p) result = std::max(result, signal_speed(P, p, pe, fl));
   return result;
 }
 
@@ -121,6 +123,10 @@ StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r, const S
     auto t = timer.scope("failure: max-principal-stress");
     check_principal_stress(P, r);
   }
+  if (models_.erosion) {
+    auto t = timer.scope("erosion: compression");
+    erode_crushed(P, r, ctx.dt);
+  }
   StressUpdate result;
   std::int64_t bad = INT64_MAX;
   result.max_signal_speed = signal_speed_and_check(P, r, bad);
@@ -145,6 +151,7 @@ void HydroMaterial::update_deviatoric(Particles& P, ParticleRange r, double dt) 
   const Span s(r);
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = s.begin; p < s.end; ++p) {
+    if (fl && fl[p] == failure_state::eroded) continue;  // no stress, volume frozen
     double D[6], W[9], spin[6];
     split_velocity_gradient(&P.velocity_gradient[9 * p], D, W);
     const double trD = D[sym::xx] + D[sym::yy] + D[sym::zz];
@@ -208,6 +215,7 @@ void HydroMaterial::update_pressure(Particles& P, ParticleRange r, double dt) co
   const Span s(r);
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = s.begin; p < s.end; ++p) {
+    if (fl && fl[p] == failure_state::eroded) continue;
     const double* L = &P.velocity_gradient[9 * p];
     const double trD = L[0] + L[4] + L[8];
     const double m = P.mass[p], V = P.volume[p];
@@ -277,7 +285,7 @@ void HydroMaterial::accumulate_damage(Particles& P, ParticleRange r, double dt) 
     D[p] += rate[p] * dt / eps_f;
     if (D[p] >= 1.0) {
       D[p] = 1.0;
-      fl[p] = 1.0;
+      fl[p] = failure_state::failed;
       strip_to_compression(sigma, pe[p]);
     }
   }
@@ -294,9 +302,47 @@ void HydroMaterial::check_principal_stress(Particles& P, ParticleRange r) const 
     if (fl[p] > 0.0) continue;
     double* sigma = &P.stress[6 * p];
     if (max_principal(sigma) >= limit) {
-      fl[p] = 1.0;
+      fl[p] = failure_state::failed;
       strip_to_compression(sigma, pe[p]);
     }
+  }
+}
+
+// Erosion: a point crushed below V / V0 = r_min loses its stress for good. Its mass and momentum
+// stay on the grid (momentum is untouched) and its internal energy stays in the balance, less the
+// work this step booked in advance: the update adds (p_n + p_n+1) / 2 dV + q dV and s_mid : D dt,
+// of which the grid pays the p_n+1, q and s_n+1 parts only in the next step, through the stress
+// that erosion now zeroes. Left in, that unpaid work appeared as energy: +4.6% instead of +1.3% in
+// the thin-wall hard case with r_min = 0.8 (474 points eroded).
+void HydroMaterial::erode_crushed(Particles& P, ParticleRange r, double dt) const {
+  const double r_min = models_.erosion->min_volume_ratio;
+  double* fl = P.field(failed).data();
+  double* pe = P.field(eos_pressure).data();
+  double* eps_rate = models_.johnson_cook ? P.field(plastic_strain_rate).data() : nullptr;
+  double* wq = models_.viscosity ? P.field(viscous_work).data() : nullptr;
+  const Span s(r);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = s.begin; p < s.end; ++p) {
+    if (fl[p] == failure_state::eroded || !(P.volume[p] < r_min * P.volume0[p])) continue;
+    double* sigma = &P.stress[6 * p];
+    const double m = P.mass[p], V = P.volume[p], V_before = volume_before(P, p, dt);
+    const double dV = V - V_before, rho_mid = 2.0 * m / (V + V_before);
+    const double mean = trace_sym(sigma) / 3.0;
+    const double q = -mean - pe[p];  // the viscous part of the mean stress
+    double D[6], W[9], dev[6];
+    split_velocity_gradient(&P.velocity_gradient[9 * p], D, W);
+    const double trD = D[sym::xx] + D[sym::yy] + D[sym::zz];
+    for (int c = 0; c < 6; ++c) dev[c] = sigma[c];
+    for (const int c : {sym::xx, sym::yy, sym::zz}) {
+      dev[c] -= mean;
+      D[c] -= trD / 3.0;
+    }
+    P.internal_energy[p] += (0.5 * pe[p] + q) * dV / m - 0.5 * dt * contract_sym(dev, D) / rho_mid;
+    if (wq) wq[p] += q * dV / m;
+    fl[p] = failure_state::eroded;
+    for (int c = 0; c < 6; ++c) sigma[c] = 0.0;
+    pe[p] = 0.0;
+    if (eps_rate) eps_rate[p] = 0.0;
   }
 }
 
@@ -315,7 +361,7 @@ double HydroMaterial::signal_speed_and_check(Particles& P, ParticleRange r, std:
       first_bad = std::min(first_bad, p);
       continue;
     }
-    result = std::max(result, sound_speed(P.mass[p] / V, pe[p], fl && fl[p] > 0.0) + speed(P, p));
+    result = std::max(result, signal_speed(P, p, pe, fl));
   }
   bad = first_bad;
   return result;
