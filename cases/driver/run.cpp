@@ -26,6 +26,7 @@
 #include "mpm/io/checkpoint.hpp"
 #include "mpm/io/energy_log.hpp"
 #include "mpm/io/snapshot_writer.hpp"
+#include "mpm/materials/hydro_material.hpp"
 
 namespace hvi::driver {
 
@@ -422,6 +423,20 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                       {"removed_mass", s.removed().mass},
                       {"status", status}};
   if (!std::isnan(earlier_wall)) summary.insert("wall_seconds_total", earlier_wall + wall);
+  if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const auto& m) { return m.erosion != "none"; })) {
+    // What erosion took out of the stress field (the points stay, as point masses).
+    const auto& P = s.particles();
+    const auto& state = P.field("failed");
+    std::int64_t count = 0;
+    double mass = 0.0;
+    for (std::size_t p = 0; p < P.size(); ++p)
+      if (state[p] == mpm::failure_state::eroded) {
+        ++count;
+        mass += P.mass[p];
+      }
+    summary.insert("eroded_particles", count);
+    summary.insert("eroded_mass", mass);
+  }
   if (hybrid) {
     summary.insert("far_field_nodes", static_cast<std::int64_t>(hybrid->far_field().node_count()));
     summary.insert("far_field_elements", static_cast<std::int64_t>(hybrid->far_field().cell_count()));

@@ -23,6 +23,7 @@ std::string MaterialSettings::effects() const {
   if (damage != "none") out += ", " + damage + " damage";
   if (failure != "none") out += ", " + failure + " failure";
   if (heating != "none") out += ", " + heating + " heating";
+  if (erosion != "none") out += ", " + erosion + " erosion";
   return out;
 }
 
@@ -158,6 +159,7 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     m.damage = text(t, "damage");
     m.failure = text(t, "failure");
     m.heating = text(t, "heating");
+    m.erosion = text(t, "erosion");
 
     mpm::HydroModels& h = m.models;
     h.shear_strength = m.strength != "none";
@@ -232,6 +234,8 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
       ParameterSource p(*ft, path + ".max_principal_stress", m.library, c);
       h.max_principal_stress = p.get("limit", L ? L->max_principal_stress : std::nullopt);
     }
+    if (auto* et = model_table("compression_erosion", m.erosion == "compression", "erosion", "compression"))
+      h.erosion = mpm::CompressionErosion{(*et)["min_volume_ratio"].value<double>().value()};
     if (auto* ht = model_table("adiabatic_heating", m.heating == "adiabatic", "heating", "adiabatic")) {
       ParameterSource p(*ht, path + ".adiabatic_heating", m.library, c);
       mpm::AdiabaticHeating heat;

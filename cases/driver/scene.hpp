@@ -50,12 +50,12 @@ struct BoundarySettings {
 // A material: the models it names and their parameters (scene values over library values).
 struct MaterialSettings {
   std::string name, library;
-  std::string strength, eos, viscosity, damage, failure, heating;  // as named in the scene
+  std::string strength, eos, viscosity, damage, failure, heating, erosion;  // as named in the scene
   mpm::HydroModels models;  // density, elasticity, and the parameters of the named models only
   // Nothing but elasticity: simulated by the plain linear elastic material.
   bool elastic_only() const {
     return strength == "elastic" && eos == "none" && viscosity == "none" && damage == "none" &&
-           failure == "none" && heating == "none";
+           failure == "none" && heating == "none" && erosion == "none";
   }
   // The models named, for messages ("johnson-cook strength, mie-gruneisen eos").
   std::string effects() const;

@@ -97,6 +97,10 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
       .optional_quantity("reference_strain_rate", dims::rate, positive(), "Reference strain rate");
   TableSpec spall{.name = "max_principal_stress", .doc = "Max-principal-stress (spall) failure."};
   spall.optional_quantity("limit", dims::pressure, positive(), "sigma_max: failure when the largest principal stress reaches it");
+  TableSpec erosion{.name = "compression_erosion",
+                    .doc = "Erosion of points crushed beyond any physical state: they keep mass, momentum and internal energy but carry no stress."};
+  erosion.number("min_volume_ratio", open_interval(0, 1), 0.5,
+                 "r_min: a point erodes when V / V0 falls below it (0.5: on its own Hugoniot, aluminium reaches it only in an Al-on-Al impact at ~16 km/s)");
   TableSpec heating{.name = "adiabatic_heating", .doc = "Temperature rise from plastic work."};
   heating.optional_quantity("specific_heat", dims::specific_heat, positive(), "c_v")
       .number("taylor_quinney", closed(0, 1), 0.9, "Fraction of plastic work turned into heat");
@@ -122,7 +126,9 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
       .choice("damage", {"none", "johnson-cook"}, "none", "Damage accumulation (eqs. 2-3); failure when D reaches 1")
       .choice("failure", {"none", "max-principal-stress"}, "none", "Instantaneous failure criterion (spall)")
       .choice("heating", {"none", "adiabatic"}, "none", "Temperature from plastic work (feeds the Johnson-Cook T*)")
-      .table(jc).table(mg).table(damage).table(spall).table(heating).table(viscosity);
+      .choice("erosion", {"none", "compression"}, "none",
+              "compression: a point crushed below min_volume_ratio loses its stress and moves as a point mass (keeps grid-squeezed thin walls from collapsing the time step)")
+      .table(jc).table(mg).table(damage).table(spall).table(heating).table(viscosity).table(erosion);
   return t;
 }
 

@@ -60,6 +60,9 @@ Range left_open(double lo, double hi) {
 Range right_open(double lo, double hi) {
   return Range{lo, hi, true, false};
 }
+Range open_interval(double lo, double hi) {
+  return Range{lo, hi, false, false};
+}
 
 // ---------------------------------------------------------------------------------------------
 // Schema builders

@@ -38,6 +38,7 @@ Range non_negative();                    // >= 0
 Range closed(double lo, double hi);      // [lo, hi]
 Range left_open(double lo, double hi);   // (lo, hi]
 Range right_open(double lo, double hi);  // [lo, hi)
+Range open_interval(double lo, double hi);  // (lo, hi)
 
 struct Key {
   std::string name;

@@ -24,7 +24,8 @@ Effects run_with(const std::vector<std::string>& models) {
   omp_set_num_threads(1);
   // Every model key set: what `models` does not name is switched off.
   std::vector<std::string> overrides = {"strength=none",  "eos=none",     "viscosity=none",
-                                        "damage=none",    "failure=none", "heating=none"};
+                                        "damage=none",    "failure=none", "heating=none",
+                                        "erosion=none"};
   for (const auto& m : models) overrides.push_back(m);
   for (auto& o : overrides) o = "material.Al6061." + o;
   const auto scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/plate_impact.toml", overrides);
@@ -56,13 +57,15 @@ const std::vector<Model> models = {
     {"failure=max-principal-stress", {"failed"}, "failure: max-principal-stress"},
     {"heating=adiabatic", {"temperature"}, "heating: adiabatic"},
     {"viscosity=bulk", {"viscous_work"}, "eos: mie-gruneisen + viscosity"},
+    {"erosion=compression", {"failed"}, "erosion: compression"},
 };
 
 // The scene names every model; taking out one removes exactly its fields and phase.
 TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
   std::vector<std::string> all = {"strength=johnson-cook", "eos=mie-gruneisen", "viscosity=bulk",
                                   "damage=johnson-cook", "heating=adiabatic",
-                                  "max_principal_stress.limit=1.5e9", "failure=max-principal-stress"};
+                                  "max_principal_stress.limit=1.5e9", "failure=max-principal-stress",
+                                  "erosion=compression"};
   const Effects full = run_with(all);
   for (const auto& m : models) {
     for (const auto& f : m.fields) {
@@ -84,14 +87,15 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
     const Effects e = run_with(without);
     EXPECT_FALSE(e.phases.count(m.phase)) << m.phase;
     for (const auto& f : m.fields) {
-      // "failed" belongs to both damage and failure: it goes only when neither is named.
-      const bool shared = f == "failed" && (m.key == "damage=johnson-cook" || m.key == "failure=max-principal-stress");
+      // "failed" belongs to damage, failure and erosion: it goes only when none is named.
+      const bool shared = f == "failed" && (m.key == "damage=johnson-cook" || m.key == "failure=max-principal-stress" ||
+                                            m.key == "erosion=compression");
       if (shared) continue;
       EXPECT_FALSE(e.fields.count(f)) << f;
       EXPECT_FALSE(e.datasets.count(f)) << f;
     }
   }
-  // With neither damage nor failure there is no failure state at all.
+  // With no damage, failure or erosion there is no failure state at all.
   const Effects plain = run_with({"strength=johnson-cook"});
   EXPECT_FALSE(plain.fields.count("failed"));
   EXPECT_TRUE(plain.phases.count("strength: johnson-cook"));
