@@ -35,12 +35,13 @@ struct ArtificialViscosity {
   double length = 0;                      // m
 };
 
-// Erosion by compression. A point of a thin wall caught in a cell with a fast, heavy neighbour is
-// squeezed by the neighbour's velocity field however stiff it is: at 0.25 mm cells the study's
-// 0.05 mm core walls were crushed to V/V0 = 0.28-0.33, the Mie-Grüneisen fit's limiting
-// compression, at 2-19 TPa, and their sound speed cut the time step 20-fold. No shock in the
-// 1-7 km/s range compresses aluminium that far (a 7 km/s Al-on-Al impact: V/V0 = 0.65 on the
-// Hugoniot; V/V0 = 0.5 needs about 16 km/s), so such a state is the grid's, not the metal's.
+// Erosion by compression. A small point caught in a cell with fast, heavy material is squeezed by
+// that material's velocity field however stiff it is: at 0.25 mm cells the study's 0.05 mm core
+// walls and 1/24 mm front-sheet fragments driven into the core were crushed to V/V0 = 0.28-0.33,
+// near the Mie-Grüneisen cap (V/V0 = 0.27), at 0.3-5 TPa, and their sound speed cut the time step
+// 20-fold. No shock in the 1-7 km/s range compresses aluminium that far (a 7 km/s Al-on-Al
+// impact: V/V0 = 0.65 on the Hugoniot; V/V0 = 0.5 needs about 16 km/s), so such a state is the
+// grid's, not the metal's.
 struct CompressionErosion {
   double min_volume_ratio = 0.5;  // r_min: erode when V / V0 < r_min
 };
