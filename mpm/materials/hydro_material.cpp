@@ -329,14 +329,11 @@ void HydroMaterial::erode_crushed(Particles& P, ParticleRange r, double dt) cons
     const double dV = V - V_before, rho_mid = 2.0 * m / (V + V_before);
     const double mean = trace_sym(sigma) / 3.0;
     const double q = -mean - pe[p];  // the viscous part of the mean stress
+    // s : D' = s : D, the deviator s being traceless.
     double D[6], W[9], dev[6];
     split_velocity_gradient(&P.velocity_gradient[9 * p], D, W);
-    const double trD = D[sym::xx] + D[sym::yy] + D[sym::zz];
     for (int c = 0; c < 6; ++c) dev[c] = sigma[c];
-    for (const int c : {sym::xx, sym::yy, sym::zz}) {
-      dev[c] -= mean;
-      D[c] -= trD / 3.0;
-    }
+    for (const int c : {sym::xx, sym::yy, sym::zz}) dev[c] -= mean;
     P.internal_energy[p] += (0.5 * pe[p] + q) * dV / m - 0.5 * dt * contract_sym(dev, D) / rho_mid;
     if (wq) wq[p] += q * dV / m;
     fl[p] = failure_state::eroded;
