@@ -56,7 +56,24 @@ std::string compare_runs(const CompareOptions& options) {
   for (const auto* t : {&a, &b})
     if (const auto* m = (*t)["measures"].as_table())
       for (const auto& [key, value] : *m) measures.insert(std::string(key.str()));
-  for (const auto& m : measures) row(m, number(a, "measures." + m), number(b, "measures." + m));
+  // A hole that reaches its sheet's edge (`front_hole_open` / `rear_hole_open` = 1) has sizes that
+  // are lower bounds: shown as ">= D", and a difference against one as a bound too.
+  auto open = [](const toml::table& t, char sheet) {
+    return number(t, sheet == 'f' ? "measures.front_hole_open" : "measures.rear_hole_open").value_or(0.0) == 1.0;
+  };
+  for (const auto& m : measures) {
+    const auto x = number(a, "measures." + m), y = number(b, "measures." + m);
+    const bool hole_size = m.size() == 3 && m[0] == 'D' && m[1] == '_' && (m[2] == 'f' || m[2] == 'r');
+    const bool oa = hole_size && open(a, m[2]), ob = hole_size && open(b, m[2]);
+    if (!oa && !ob) {
+      row(m, x, y);
+      continue;
+    }
+    auto bound = [](bool is_open, std::optional<double> v) { return (is_open && v ? "≥ " : "") + cell(v); };
+    const std::string d = difference(x, y);
+    out += fmt::format("| {} | {} | {} | {}{} |\n", m, bound(oa, x), bound(ob, y), d,
+                       d.empty() ? "" : oa && ob ? " (both lower bounds)" : oa ? " (A a lower bound)" : " (B a lower bound)");
+  }
   row("time (s)", number(a, "time"), number(b, "time"));
   row("particles", number(a, "particles"), number(b, "particles"));
   row("far-field nodes", number(a, "far_field_nodes"), number(b, "far_field_nodes"));

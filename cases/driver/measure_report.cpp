@@ -210,6 +210,8 @@ std::vector<std::pair<std::string, double>> headline_quantities(const Measuremen
     const double nan = std::numeric_limits<double>::quiet_NaN();
     q.emplace_back(fmt::format("D_{}", c), s->hole.resolution > 0 ? s->hole.D : nan);
     q.emplace_back(fmt::format("e_{}", c), s->hole.resolution > 0 ? s->hole.eccentricity : nan);
+    // 1: the hole reaches the sheet's edge (a hybrid's zone, the model's side), so D is a lower bound.
+    q.emplace_back(fmt::format("{}_hole_open", which), s->hole.open ? 1.0 : 0.0);
   };
   sheet(m.front, "front");
   sheet(m.rear, "rear");

@@ -244,6 +244,7 @@ TEST(MeasureCommand, PanelPerforatedRearAndTaper) {
   EXPECT_EQ(q.at("taper"), *m.taper);
   EXPECT_EQ(q.at("debris_mass"), m.debris.mass);
   EXPECT_EQ(q.count("bulge"), 0u);  // perforated: no bulge
+  EXPECT_EQ(q.at("rear_hole_open"), 0.0);  // closed inside the sheet: D_r is the hole's size
 
   // Without mirroring the half sheet's hole reaches the cut at y = 0: open, and the axis is the
   // half projectile's centroid (off the plane) unless given.
@@ -251,6 +252,9 @@ TEST(MeasureCommand, PanelPerforatedRearAndTaper) {
   o.axis = std::array<double, 2>{0.0, 0.0};
   const Measurements half = measure_run(o);
   EXPECT_TRUE(half.rear->hole.open);
+  std::map<std::string, double> q_half;
+  for (const auto& [name, value] : headline_quantities(half)) q_half[name] = value;
+  EXPECT_EQ(q_half.at("rear_hole_open"), 1.0);  // the summary says D_r is a lower bound
 }
 
 // --snapshot all: one row per snapshot, each the measure of that snapshot alone; the CSV has the

@@ -359,6 +359,14 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   EXPECT_NE(t.find("| wall time (s) | 100 | 30 | -70.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| far-field nodes | — | 50 |  |"), std::string::npos) << t;
   EXPECT_EQ(run("compare " + a.string() + " " + (b / "missing").string()), 2);
+
+  // A hole reaching its sheet's edge (a hybrid's torn zone) is a lower bound, and so is its difference.
+  std::ofstream(b / "summary.toml") << "status = 'finished'\nwall_seconds = 20.0\nparticles = 100\n"
+                                       "[measures]\nD_f = 10.5\nD_r = 19.0\nrear_hole_open = 1.0\nfront_hole_open = 0.0\n";
+  ASSERT_EQ(std::system((hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()), 0);
+  const std::string bounded = read(table);
+  EXPECT_NE(bounded.find("| D_r | 20 | ≥ 19 | -5.00% (B a lower bound) |"), std::string::npos) << bounded;
+  EXPECT_NE(bounded.find("| D_f | 10 | 10.5 | +5.00% |"), std::string::npos) << bounded;
 }
 
 // hvi fit A B: the rows of several tables are fitted together (the paper fits eq. 18 to the
