@@ -57,7 +57,7 @@ std::string compare_runs(const CompareOptions& options) {
     if (const auto* m = (*t)["measures"].as_table())
       for (const auto& [key, value] : *m) measures.insert(std::string(key.str()));
   // A hole that reaches its sheet's edge (`front_hole_open` / `rear_hole_open` = 1) has sizes that
-  // are lower bounds: shown as ">= D", and a difference against one as a bound too.
+  // are lower bounds: shown as "≥ D", and a difference against one as a bound too.
   auto open = [](const toml::table& t, char sheet) {
     return number(t, sheet == 'f' ? "measures.front_hole_open" : "measures.rear_hole_open").value_or(0.0) == 1.0;
   };
