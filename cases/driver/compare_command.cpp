@@ -47,8 +47,15 @@ std::string compare_runs(const CompareOptions& options) {
   const toml::table a = read_summary(options.a), b = read_summary(options.b);
   std::string out = fmt::format("| quantity | A: {} | B: {} | B - A |\n|---|---|---|---|\n", options.a.string(),
                                 options.b.string());
-  auto row = [&](const std::string& name, std::optional<double> x, std::optional<double> y) {
-    out += fmt::format("| {} | {} | {} | {} |\n", name, cell(x), cell(y), difference(x, y));
+  // A value marked as a bound (a hole reaching its sheet's edge) shows as "≥ v", and so does the
+  // difference it enters.
+  auto row = [&](const std::string& name, std::optional<double> x, std::optional<double> y,
+                 bool x_bound = false, bool y_bound = false) {
+    std::string d = difference(x, y);
+    if (!d.empty() && (x_bound || y_bound))
+      d += x_bound && y_bound ? " (both lower bounds)" : x_bound ? " (A a lower bound)" : " (B a lower bound)";
+    out += fmt::format("| {} | {}{} | {}{} | {} |\n", name, x_bound && x ? "≥ " : "", cell(x),
+                       y_bound && y ? "≥ " : "", cell(y), d);
   };
   out += fmt::format("| status | {} | {} | |\n", a["status"].value_or(std::string("?")),
                      b["status"].value_or(std::string("?")));
@@ -56,24 +63,13 @@ std::string compare_runs(const CompareOptions& options) {
   for (const auto* t : {&a, &b})
     if (const auto* m = (*t)["measures"].as_table())
       for (const auto& [key, value] : *m) measures.insert(std::string(key.str()));
-  // A hole that reaches its sheet's edge (`front_hole_open` / `rear_hole_open` = 1) has sizes that
-  // are lower bounds: shown as "≥ D", and a difference against one as a bound too.
-  auto open = [](const toml::table& t, char sheet) {
-    return number(t, sheet == 'f' ? "measures.front_hole_open" : "measures.rear_hole_open").value_or(0.0) == 1.0;
+  // D_f and D_r are lower bounds where the run's front_hole_open / rear_hole_open is 1.
+  auto open = [](const toml::table& t, const std::string& m) {
+    const auto flag = m == "D_f" ? "measures.front_hole_open" : m == "D_r" ? "measures.rear_hole_open" : "";
+    return *flag && number(t, flag).value_or(0.0) == 1.0;
   };
-  for (const auto& m : measures) {
-    const auto x = number(a, "measures." + m), y = number(b, "measures." + m);
-    const bool hole_size = m.size() == 3 && m[0] == 'D' && m[1] == '_' && (m[2] == 'f' || m[2] == 'r');
-    const bool oa = hole_size && open(a, m[2]), ob = hole_size && open(b, m[2]);
-    if (!oa && !ob) {
-      row(m, x, y);
-      continue;
-    }
-    auto bound = [](bool is_open, std::optional<double> v) { return (is_open && v ? "≥ " : "") + cell(v); };
-    const std::string d = difference(x, y);
-    out += fmt::format("| {} | {} | {} | {}{} |\n", m, bound(oa, x), bound(ob, y), d,
-                       d.empty() ? "" : oa && ob ? " (both lower bounds)" : oa ? " (A a lower bound)" : " (B a lower bound)");
-  }
+  for (const auto& m : measures)
+    row(m, number(a, "measures." + m), number(b, "measures." + m), open(a, m), open(b, m));
   row("time (s)", number(a, "time"), number(b, "time"));
   row("particles", number(a, "particles"), number(b, "particles"));
   row("far-field nodes", number(a, "far_field_nodes"), number(b, "far_field_nodes"));
