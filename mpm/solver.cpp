@@ -18,7 +18,10 @@ Solver::Solver(GridGeometry grid, SolverSettings settings,
       materials_(std::move(materials)),
       body_names_(std::move(body_names)),
       boundaries_(std::move(boundaries)),
-      grid_(grid) {}
+      grid_(grid) {
+  if (settings_.dilatation == Dilatation::node_average)
+    volumetric_ = std::make_unique<VolumetricAverage>(static_cast<int>(body_names_.size()));
+}
 
 TransferContext Solver::transfer_context() const {
   return {settings_.shape, half_width_, settings_.flip, dt_};
@@ -156,8 +159,13 @@ void Solver::bin_particles() {
 }
 
 void Solver::particles_to_grid(Scatter what) {
+  TransferContext context = transfer_context();
+  if (volumetric_ && what != Scatter::mass_momentum) {
+    auto t = timer_.scope("mean stress: node average");
+    context.mean_stress_shift = volumetric_->mean_stress_shift(particles_, bins_, grid_, context).data();
+  }
   auto t = timer_.scope("particles to grid");
-  mpm::particles_to_grid(what, particles_, bins_, grid_, transfer_context());
+  mpm::particles_to_grid(what, particles_, bins_, grid_, context);
 }
 
 void Solver::couple(GridStage stage) {
@@ -189,6 +197,10 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
   {
     auto t = timer_.scope("velocity gradient");
     mpm::velocity_gradient(particles_, bins_, grid_, transfer_context(), which);
+  }
+  if (volumetric_) {
+    auto t = timer_.scope("dilatation: node average");
+    volumetric_->average_dilatation(particles_, bins_, grid_, transfer_context());
   }
   if (settings_.shape == ShapeFunction::cpgimp) stretch_particle_domains();
 }
@@ -366,6 +378,8 @@ EnergyReport Solver::energy() const {
   return e;
 }
 
-std::size_t Solver::bytes() const { return particles_.bytes() + grid_.bytes() + bins_.bytes(); }
+std::size_t Solver::bytes() const {
+  return particles_.bytes() + grid_.bytes() + bins_.bytes() + (volumetric_ ? volumetric_->bytes() : 0);
+}
 
 }  // namespace hvi::mpm

@@ -19,8 +19,15 @@
 #include "mpm/shape_functions.hpp"
 #include "mpm/transfers.hpp"
 #include "mpm/types.hpp"
+#include "mpm/volumetric_average.hpp"
 
 namespace hvi::mpm {
+
+// Which dilatation tr L a point's volume and pressure follow (volumetric_average.hpp).
+enum class Dilatation {
+  particle,      // its own (standard MPM, the paper's)
+  node_average,  // the average through the grid nodes over the intact points of its body
+};
 
 enum class UpdateScheme {
   musl,  // modified update stress last: velocities remapped to the grid before the strain rate
@@ -38,6 +45,7 @@ struct SolverSettings {
   // particle is racing away): it stops with an error instead of crawling on.
   double min_time_step_fraction = 1e-3;
   int reorder_interval = 16;  // steps between sorting particle arrays by material and block
+  Dilatation dilatation = Dilatation::particle;
 };
 
 // Everything that left the domain, so that nothing is lost silently.
@@ -160,6 +168,7 @@ class Solver {
   ParticleBins bins_;
   std::vector<ParticleRange> ranges_;
   std::vector<double>* half_width_ = nullptr;  // GIMP only
+  std::unique_ptr<VolumetricAverage> volumetric_;  // Dilatation::node_average only
 
   SolverState state_;
   double dt_ = 0.0;  // of the step in progress

@@ -67,6 +67,7 @@ struct Setup {
   const GridGeometry& g;
   double inv_h;
   const double* half_width;  // 3 per particle, m
+  const double* mean_stress_shift;  // per particle, added to the stress's diagonal in the force
   // Half-widths of particle p in cells, per axis, in `out`; nullptr for linear shape functions.
   const double* a(std::size_t p, double* out) const {
     if (!half_width) return nullptr;
@@ -124,6 +125,8 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
           if constexpr (force) {
             const double V = P.volume[p];
             for (int c = 0; c < 6; ++c) vs[c] = V * P.stress[6 * p + c];
+            if (s.mean_stress_shift)
+              for (const int c : {sym::xx, sym::yy, sym::zz}) vs[c] += V * s.mean_stress_shift[p];
           }
           st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double* g) {
             if constexpr (mass) n.mass += w * m;
@@ -224,7 +227,53 @@ void gather_gradient(Particles& P, const ParticleBins& bins, const SparseGrid& g
 
 Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
   return {grid.geometry(), 1.0 / grid.geometry().cell_size,
-          c.half_width ? c.half_width->data() : nullptr};
+          c.half_width ? c.half_width->data() : nullptr, c.mean_stress_shift};
+}
+
+
+// sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p) over the counted particles of the group;
+// then out_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p). Nodes are indexed by their
+// place in the grid's storage, groups by `group`.
+template <class Shape>
+void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
+                       const NodeAverage& a, std::vector<double>& sums, std::vector<double>& out) {
+  const int G = a.groups;
+  const GridNode* base = grid.block(0);
+  sums.assign(grid.block_count() * SparseGrid::block_size * static_cast<std::size_t>(G) * 2, 0.0);
+  out.assign(P.size(), 0.0);
+  auto slot = [&](const GridNode& n, std::uint32_t p) {
+    return 2 * (static_cast<std::size_t>(&n - base) * G + static_cast<std::size_t>(a.group[p]));
+  };
+  for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
+    NodeStencil<Shape> st;
+    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+      const std::uint32_t p = bins.order[k];
+      if (a.skip && a.skip[p] > 0.0) continue;
+      double a_cells[3];
+      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+      const double V = P.volume[p], Va = V * a.value[p];
+      st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
+        double* sum = &sums[slot(n, p)];
+        sum[0] += w * Va;
+        sum[1] += w * V;
+      });
+    }
+  });
+  for_each_block(bins, grid, [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
+    NodeStencil<Shape> st;
+    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+      const std::uint32_t p = bins.order[k];
+      if (a.skip && a.skip[p] > 0.0) continue;
+      double a_cells[3];
+      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+      double average = 0.0;
+      st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
+        const double* sum = &sums[slot(n, p)];
+        if (sum[1] > 0.0) average += w * sum[0] / sum[1];
+      });
+      out[p] = average;
+    }
+  });
 }
 
 template <class Shape>
@@ -252,6 +301,16 @@ void particles_to_grid(Scatter what, const Particles& particles, const ParticleB
     scatter_dispatch<LinearShape>(what, particles, bins, grid, s);
   else
     scatter_dispatch<GimpShape>(what, particles, bins, grid, s);
+}
+
+void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                  const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
+                  std::vector<double>& out) {
+  const Setup s = make_setup(grid, context);
+  if (context.shape == ShapeFunction::linear)
+    node_average_impl<LinearShape>(particles, bins, grid, s, average, sums, out);
+  else
+    node_average_impl<GimpShape>(particles, bins, grid, s, average, sums, out);
 }
 
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,

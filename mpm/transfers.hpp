@@ -2,6 +2,9 @@
 // Particle <-> grid transfers, the kernels of every MPM step. Weights are recomputed in each pass
 // from the start-of-step positions (cheaper than storing them). Scatters run colour by colour over
 // owner blocks (see particle_bins.hpp); gathers run over owner blocks in any order.
+#include <cstdint>
+#include <vector>
+
 #include "mpm/grid.hpp"
 #include "mpm/particle_bins.hpp"
 #include "mpm/particles.hpp"
@@ -14,6 +17,9 @@ struct TransferContext {
   const std::vector<double>* half_width = nullptr;  // GIMP particle half-widths, 3 per particle, m
   double flip = 1.0;  // FLIP fraction of the particle velocity update (1 FLIP, 0 PIC)
   double dt = 0.0;
+  // Per particle, added to the diagonal of its stress in the internal force (the node-averaged
+  // mean stress less its own, volumetric_average.hpp); nullptr for none.
+  const double* mean_stress_shift = nullptr;
 };
 
 enum class Scatter {
@@ -31,6 +37,22 @@ void particles_to_grid(Scatter what, const Particles& particles, const ParticleB
 // With `remap` (MUSL), the same pass scatters the updated momentum: q_I = sum N m_p v_p.
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                        const TransferContext& context, bool remap);
+
+// A particle scalar a_p averaged through the grid nodes, group by group:
+//   a_I = sum_p N_I(x_p) V_p a_p / sum_p N_I(x_p) V_p   over the counted particles of one group,
+//   abar_p = sum_I N_I(x_p) a_I                         with the nodal values of p's group.
+// Particles with skip[p] > 0 neither count nor get a value (abar_p = 0).
+struct NodeAverage {
+  const double* value = nullptr;        // a_p
+  const std::int64_t* group = nullptr;  // per particle, in [0, groups)
+  int groups = 1;
+  const double* skip = nullptr;
+};
+
+// Fills out (one value per particle); sums is scratch storage kept between calls.
+void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                  const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
+                  std::vector<double>& out);
 
 // Which nodal velocity the velocity gradient is taken from.
 enum class NodalVelocity {

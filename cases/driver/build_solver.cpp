@@ -41,6 +41,7 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
                     : g.scheme == "usf" ? mpm::UpdateScheme::usf
                                         : mpm::UpdateScheme::musl;
   settings.flip = g.flip;
+  settings.dilatation = g.dilatation == "node-average" ? mpm::Dilatation::node_average : mpm::Dilatation::particle;
   settings.cfl = g.cfl;
   if (g.max_time_step) settings.max_time_step = *g.max_time_step;
 

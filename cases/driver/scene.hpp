@@ -35,6 +35,7 @@ struct GridSettings {
   double cell_size = 0.0;
   std::array<int, 3> cells{};
   std::string shape_function, scheme;
+  std::string dilatation = "particle";  // particle | node-average
   double flip = 1.0, cfl = 0.5;
   std::optional<double> max_time_step;
 };

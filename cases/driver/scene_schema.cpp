@@ -49,6 +49,11 @@ TableSpec grid_table() {
               "Update scheme: musl, usl, or usf (update stress first, the paper's flowchart)")
       .number("flip", closed(0, 1), 1.0,
               "FLIP fraction of the particle velocity update (1: FLIP, as the paper; 0: PIC)")
+      .choice("dilatation", {"particle", "node-average"}, "particle",
+              "Volume change a point follows: particle (its own, standard MPM, the paper's) or "
+              "node-average (averaged through the grid nodes over the intact points of its body, "
+              "with the mean stress averaged alike in the force: lifts the volumetric locking of walls "
+              "a few cells thick; see README)")
       .number("cfl", left_open(0, 0.9), 0.5,
               "Courant number: dt = cfl h / max(sound speed + particle speed). At most 0.9: dt comes "
               "from the previous step's sound speed and a shock stiffens the material within a step")

@@ -20,7 +20,7 @@ struct Effects {
   std::set<std::string> fields, phases, datasets;
 };
 
-Effects run_with(const std::vector<std::string>& models) {
+Effects run_with(const std::vector<std::string>& models, const std::vector<std::string>& scene_keys = {}) {
   omp_set_num_threads(1);
   // Every model key set: what `models` does not name is switched off.
   std::vector<std::string> overrides = {"strength=none",  "eos=none",     "viscosity=none",
@@ -28,6 +28,7 @@ Effects run_with(const std::vector<std::string>& models) {
                                         "erosion=none"};
   for (const auto& m : models) overrides.push_back(m);
   for (auto& o : overrides) o = "material.Al6061." + o;
+  overrides.insert(overrides.end(), scene_keys.begin(), scene_keys.end());
   const auto scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/plate_impact.toml", overrides);
   auto solver = driver::make_solver(scene);
   driver::add_bodies(scene, *solver);
@@ -100,6 +101,20 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
   EXPECT_FALSE(plain.fields.count("failed"));
   EXPECT_TRUE(plain.phases.count("strength: johnson-cook"));
   EXPECT_TRUE(plain.phases.count("eos: elastic bulk"));
+}
+
+// The node-averaged dilatation (grid.dilatation) is two phases of the step, run only when named;
+// it adds no particle field.
+TEST(Effects, NodeAveragedDilatationRunsOnlyWhenNamed) {
+  const std::vector<std::string> jc = {"strength=johnson-cook", "eos=mie-gruneisen"};
+  const Effects plain = run_with(jc);
+  const Effects averaged = run_with(jc, {"grid.dilatation=node-average"});
+  for (const char* phase : {"dilatation: node average", "mean stress: node average"}) {
+    EXPECT_FALSE(plain.phases.count(phase)) << phase;
+    EXPECT_TRUE(averaged.phases.count(phase)) << phase;
+  }
+  EXPECT_EQ(plain.fields, averaged.fields);
+  EXPECT_EQ(plain.datasets, averaged.datasets);
 }
 
 }  // namespace

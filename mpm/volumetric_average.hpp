@@ -1,0 +1,57 @@
+#pragma once
+// Node-averaged dilatation, for walls only a few cells thick (grid.dilatation = "node-average").
+//
+// Plastic flow keeps volume constant. A facesheet two cells thick, stretched in its plane, must
+// thin out to do so, and standard MPM gives every point the dilatation d_p = tr L_p of a velocity
+// field that cannot thin the sheet across two cells. The points see expansion they do not have:
+// hydrostatic tension in a sheet that should be in plane stress (triaxiality sigma* <= 2/3). This
+// is volumetric locking. Al6061's Johnson-Cook failure strain (eq. 3, Table 4) is zero above
+// sigma* = 1.35, so the tension fails the sheet: at 0.4 mm cells the front hole's edge fails
+// at sigma* 1.35-1.6 under 0.7-1.0 GPa of tension (README, "How far from the paper").
+//
+// The remedy is that of B-bar and F-bar elements (Hughes 1980; for MPM Mast et al. 2012, Coombs et
+// al. 2018): fewer volume constraints than points. Each intact point's dilatation is replaced by
+// its average through the grid nodes, body by body:
+//   d_I = sum_q N_I(x_q) V_q d_q / sum_q N_I(x_q) V_q   (q intact, of the body of p)
+//   dbar_p = sum_I N_I(x_p) d_I,       L_p <- L_p + (dbar_p - d_p) / 3 1.
+// The operator A (dbar = A d) satisfies V_p A_pq = V_q A_qp, so with the mean stress m = tr sigma / 3
+// averaged the same way, sum_p V_p m_p dbar_p = sum_p V_p mbar_p d_p. The internal force therefore
+// uses mbar: f_I = -sum_p V_p (sigma_p + (mbar_p - m_p) 1) grad N_I(x_p), and the work the grid
+// does on the points is exactly the work they book in their internal energy (tested).
+// Failed points (no tension, no shear) are left out of both averages and keep their own d_p:
+// the spray of a hole expanding away must not be averaged into the intact wall beside it. Bodies
+// are averaged apart, so a projectile's shock is not spread into the sheet it strikes.
+// Both averages are taken in the same step, from the same positions, volumes and failure flags.
+#include <vector>
+
+#include "mpm/grid.hpp"
+#include "mpm/particle_bins.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/transfers.hpp"
+
+namespace hvi::mpm {
+
+class VolumetricAverage {
+ public:
+  explicit VolumetricAverage(int bodies) : bodies_(bodies) {}
+
+  // Before a scatter of the internal force: mbar_p - m_p per particle (0 for failed points), to
+  // go into TransferContext::mean_stress_shift.
+  const std::vector<double>& mean_stress_shift(const Particles& particles, const ParticleBins& bins,
+                                               SparseGrid& grid, const TransferContext& context);
+
+  // After the velocity gradient: tr L_p -> dbar_p on every intact point.
+  void average_dilatation(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                          const TransferContext& context);
+
+  std::size_t bytes() const {
+    return (value_.capacity() + average_.capacity() + shift_.capacity() + sums_.capacity()) * sizeof(double);
+  }
+
+ private:
+  NodeAverage averaging(const Particles& particles) const;
+  int bodies_;
+  std::vector<double> value_, average_, shift_, sums_;
+};
+
+}  // namespace hvi::mpm
