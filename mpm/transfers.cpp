@@ -230,7 +230,6 @@ Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
           c.half_width ? c.half_width->data() : nullptr, c.mean_stress_shift};
 }
 
-
 // sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p) over the counted particles of the group;
 // then out_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p). Nodes are indexed by their
 // place in the grid's storage, groups by `group`.

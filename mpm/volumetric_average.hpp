@@ -1,11 +1,12 @@
 #pragma once
 // Node-averaged dilatation, for walls only a few cells thick (grid.dilatation = "node-average").
 //
-// Plastic flow keeps volume constant. A facesheet two cells thick, stretched in its plane, must
-// thin out to do so, and standard MPM gives every point the dilatation d_p = tr L_p of a velocity
-// field that cannot thin the sheet across two cells. The points see expansion they do not have:
-// hydrostatic tension in a sheet that should be in plane stress (triaxiality sigma* <= 2/3). This
-// is volumetric locking. Al6061's Johnson-Cook failure strain (eq. 3, Table 4) is zero above
+// Plastic flow keeps volume constant. A facesheet two cells thick, stretched and bent in its
+// plane, must thin out to do so, and standard MPM gives every point the dilatation d_p = tr L_p of
+// a velocity field two cells across, which cannot keep every point's volume: the points see
+// expansion that varies from point to point, hydrostatic tension in a sheet that should be in
+// plane stress (triaxiality sigma* <= 2/3). This is volumetric locking (with cell-crossing noise
+// on top). Al6061's Johnson-Cook failure strain (eq. 3, Table 4) is zero above
 // sigma* = 1.35, so the tension fails the sheet: at 0.4 mm cells the front hole's edge fails
 // at sigma* 1.35-1.6 under 0.7-1.0 GPa of tension (README, "How far from the paper").
 //
@@ -21,7 +22,9 @@
 // Failed points (no tension, no shear) are left out of both averages and keep their own d_p:
 // the spray of a hole expanding away must not be averaged into the intact wall beside it. Bodies
 // are averaged apart, so a projectile's shock is not spread into the sheet it strikes.
-// Both averages are taken in the same step, from the same positions, volumes and failure flags.
+// Both averages are taken in the same step, from the same positions, volumes and failure flags
+// (with USF the force's average follows the stress update, so points failing in that step have
+// already left it).
 #include <vector>
 
 #include "mpm/grid.hpp"
