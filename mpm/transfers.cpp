@@ -1,5 +1,6 @@
 #include "mpm/transfers.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "mpm/types.hpp"
@@ -238,8 +239,13 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
                        const NodeAverage& a, std::vector<double>& sums, std::vector<double>& out) {
   const int G = a.groups;
   const GridNode* base = grid.block(0);
-  sums.assign(grid.block_count() * SparseGrid::block_size * static_cast<std::size_t>(G) * 2, 0.0);
-  out.assign(P.size(), 0.0);
+  const auto block_values = static_cast<std::int64_t>(SparseGrid::block_size) * G * 2;
+  const auto blocks = static_cast<std::int64_t>(grid.block_count());
+  sums.resize(static_cast<std::size_t>(blocks * block_values));
+  out.resize(P.size());
+  double* zero = sums.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b) std::fill_n(zero + b * block_values, block_values, 0.0);
   auto slot = [&](const GridNode& n, std::uint32_t p) {
     return 2 * (static_cast<std::size_t>(&n - base) * G + static_cast<std::size_t>(a.group[p]));
   };
@@ -262,7 +268,10 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
       const std::uint32_t p = bins.order[k];
-      if (a.skip && a.skip[p] > 0.0) continue;
+      if (a.skip && a.skip[p] > 0.0) {
+        out[p] = 0.0;
+        continue;
+      }
       double a_cells[3];
       st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
       double average = 0.0;
