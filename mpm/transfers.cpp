@@ -253,7 +253,7 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
       const std::uint32_t p = bins.order[k];
-      if (a.skip && a.skip[p] > 0.0) continue;
+      if (!a.counts(p)) continue;
       double a_cells[3];
       st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
       const double V = P.volume[p], Va = V * a.value[p];
@@ -268,7 +268,7 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
       const std::uint32_t p = bins.order[k];
-      if (a.skip && a.skip[p] > 0.0) {
+      if (!a.counts(p)) {
         out[p] = 0.0;
         continue;
       }

@@ -47,6 +47,7 @@ struct NodeAverage {
   const std::int64_t* group = nullptr;  // per particle, in [0, groups)
   int groups = 1;
   const double* skip = nullptr;
+  bool counts(std::size_t p) const { return !(skip && skip[p] > 0.0); }
 };
 
 // Fills out (one value per particle); sums is scratch storage kept between calls.

@@ -30,7 +30,7 @@ const std::vector<double>& VolumetricAverage::mean_stress_shift(const Particles&
   shift_.resize(P.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p)
-    shift_[p] = a.skip && a.skip[p] > 0.0 ? 0.0 : average_[p] - value_[p];
+    shift_[p] = a.counts(p) ? average_[p] - value_[p] : 0.0;
   return shift_;
 }
 
@@ -45,7 +45,7 @@ void VolumetricAverage::average_dilatation(Particles& P, const ParticleBins& bin
   node_average(P, bins, grid, context, a, sums_, average_);
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
-    if (a.skip && a.skip[p] > 0.0) continue;
+    if (!a.counts(p)) continue;
     const double shift = (average_[p] - value_[p]) / 3.0;
     L[9 * p] += shift;
     L[9 * p + 4] += shift;
