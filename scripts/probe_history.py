@@ -102,9 +102,10 @@ def particle_history(run, point, axis, cell):
     rows = []
     for path in snapshots:
         with h5py.File(path, "r") as f:
-            now = np.isin(f["id"][:], list(reference))
+            ids_now = f["id"][:]
+            now = np.isin(ids_now, list(reference))
             z = f["position"][:, axis][now]
-            z0 = np.array([reference[i] for i in f["id"][:][now].tolist()])
+            z0 = np.array([reference[i] for i in ids_now[now].tolist()])
             rows.append((float(f.attrs["time"]), float(np.mean(z - z0)) if z.size else float("nan")))
     return rows, f"{int(chosen.sum())} particles of body {int(body[nearest])} within {cell:g} m"
 
