@@ -34,7 +34,8 @@ void owner_keys(const Particles& particles, const GridGeometry& g, const std::ve
 }  // namespace
 
 void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid& grid,
-                   ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys) {
+                   ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys,
+                   const std::uint8_t* field, std::uint8_t which) {
   const std::size_t n = particles.size();
   bins.key.resize(n);
   if (stencil.shape == ShapeFunction::linear)
@@ -45,11 +46,15 @@ void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid
   // Owner blocks in order of first appearance. Particles are stored mostly in block order, so
   // consecutive particles usually share a key and skip the hash lookup.
   grid.clear();
-  std::vector<std::uint32_t> owner(n);
+  constexpr std::uint32_t unbinned = SparseGrid::none;
+  std::vector<std::uint32_t> owner(n, unbinned);
   std::vector<std::uint32_t> count;
   std::uint64_t last_key = ~std::uint64_t{0};
   std::uint32_t last_block = 0;
+  std::size_t binned = 0;
   for (std::size_t p = 0; p < n; ++p) {
+    if (field && field[p] != which) continue;
+    ++binned;
     if (bins.key[p] != last_key) {
       last_key = bins.key[p];
       last_block = grid.activate(last_key);
@@ -63,10 +68,11 @@ void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid
   // Counting sort, stable in particle order.
   bins.offset.assign(owners + 1, 0);
   for (std::uint32_t b = 0; b < owners; ++b) bins.offset[b + 1] = bins.offset[b] + count[b];
-  bins.order.resize(n);
+  bins.order.resize(binned);
   {
     std::vector<std::uint32_t> next(bins.offset.begin(), bins.offset.end() - 1);
-    for (std::size_t p = 0; p < n; ++p) bins.order[next[owner[p]]++] = static_cast<std::uint32_t>(p);
+    for (std::size_t p = 0; p < n; ++p)
+      if (owner[p] != unbinned) bins.order[next[owner[p]]++] = static_cast<std::uint32_t>(p);
   }
 
   // Blocks the stencils reach, and colours.

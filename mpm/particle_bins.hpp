@@ -34,8 +34,11 @@ struct StencilSource {
 
 // Rebuilds the grid's active blocks for this step and bins the particles. Owner blocks get the
 // block indices 0 .. owner_count()-1 in order of first appearance in the particle arrays; the
-// blocks they reach and the blocks in `extra_keys` follow.
+// blocks they reach and the blocks in `extra_keys` follow. With `field` (one entry per particle),
+// only the particles whose entry equals `which` are binned: one velocity field of a contact
+// model (contact.hpp) gets its own grid and bins.
 void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid& grid,
-                   ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys);
+                   ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys,
+                   const std::uint8_t* field = nullptr, std::uint8_t which = 0);
 
 }  // namespace hvi::mpm

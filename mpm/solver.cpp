@@ -19,8 +19,16 @@ Solver::Solver(GridGeometry grid, SolverSettings settings,
       body_names_(std::move(body_names)),
       boundaries_(std::move(boundaries)),
       grid_(grid) {
-  if (settings_.dilatation == Dilatation::node_average)
-    volumetric_ = std::make_unique<VolumetricAverage>(static_cast<int>(body_names_.size()));
+  const int bodies = static_cast<int>(body_names_.size());
+  if (settings_.contact) {
+    if (settings_.contact->impactor.size() != body_names_.size())
+      throw std::invalid_argument("contact: one field entry per body is needed");
+    contact_ = std::make_unique<BodyContact>(grid, *settings_.contact);
+  }
+  if (settings_.dilatation == Dilatation::node_average) {
+    volumetric_ = std::make_unique<VolumetricAverage>(bodies);
+    if (contact_) volumetric1_ = std::make_unique<VolumetricAverage>(bodies);
+  }
 }
 
 TransferContext Solver::transfer_context() const {
@@ -95,7 +103,9 @@ void Solver::sort_by_material_and_block() {
   for (const auto m : particles_.material) ++start[m + 1];
   for (std::size_t m = 0; m < materials_.size(); ++m) start[m + 1] += start[m];
   std::vector<std::uint32_t> order(n);
-  for (const auto p : bins_.order) order[start[particles_.material[p]]++] = p;
+  for_each_field([&](const ParticleBins& bins, const SparseGrid&, const VolumetricAverage*) {
+    for (const auto p : bins.order) order[start[particles_.material[p]]++] = p;
+  });
   particles_.reorder(order);
   compute_material_ranges();
   bin_particles();
@@ -155,17 +165,37 @@ void Solver::bin_particles() {
   auto t = timer_.scope("bin particles");
   std::vector<std::uint64_t> extra;
   for (const auto* c : couplings_) c->request_blocks(extra);
-  mpm::bin_particles(particles_, {settings_.shape, half_width_}, grid_, bins_, extra);
+  if (!contact_) {
+    mpm::bin_particles(particles_, {settings_.shape, half_width_}, grid_, bins_, extra);
+    return;
+  }
+  const std::uint8_t* field = contact_->assign_fields(particles_).data();
+  mpm::bin_particles(particles_, {settings_.shape, half_width_}, grid_, bins_, extra, field, 0);
+  mpm::bin_particles(particles_, {settings_.shape, half_width_}, contact_->grid(), contact_->bins(), {}, field, 1);
 }
 
 void Solver::particles_to_grid(Scatter what) {
-  TransferContext context = transfer_context();
-  if (volumetric_ && what != Scatter::mass_momentum) {
-    auto t = timer_.scope("mean stress: node average");
-    context.mean_stress_shift = volumetric_->mean_stress_shift(particles_, bins_, grid_, context).data();
+  for_each_field([&](const ParticleBins& bins, SparseGrid& grid, VolumetricAverage* volumetric) {
+    TransferContext context = transfer_context();
+    if (volumetric && what != Scatter::mass_momentum) {
+      auto t = timer_.scope("mean stress: node average");
+      context.mean_stress_shift = volumetric->mean_stress_shift(particles_, bins, grid, context).data();
+    }
+    auto t = timer_.scope("particles to grid");
+    mpm::particles_to_grid(what, particles_, bins, grid, context);
+  });
+  if (contact_ && what != Scatter::force) {
+    auto t = timer_.scope("contact: normals");
+    contact_->compute_normals(particles_, bins_, grid_, transfer_context());
   }
-  auto t = timer_.scope("particles to grid");
-  mpm::particles_to_grid(what, particles_, bins_, grid_, context);
+}
+
+void Solver::apply_contact(NodalVelocity which) {
+  if (!contact_) return;
+  auto t = timer_.scope("contact");
+  state_.contact_work += contact_->apply(grid_, which);
+  apply_grid_conditions(contact_->grid(), boundaries_);
+  apply_grid_conditions(grid_, boundaries_);
 }
 
 void Solver::couple(GridStage stage) {
@@ -175,33 +205,50 @@ void Solver::couple(GridStage stage) {
 }
 
 void Solver::update_grid(bool velocity, bool increment) {
-  auto t = timer_.scope("grid update");
-  update_nodes(grid_, velocity, increment, dt_);
-  apply_grid_conditions(grid_, boundaries_);
-  if (increment)
+  {
+    auto t = timer_.scope("grid update");
+    for_each_field([&](const ParticleBins&, SparseGrid& grid, const VolumetricAverage*) {
+      update_nodes(grid, velocity, increment, dt_);
+      apply_grid_conditions(grid, boundaries_);
+    });
+  }
+  if (velocity) apply_contact(NodalVelocity::start);
+  if (increment) apply_contact(NodalVelocity::end);
+  if (increment && !couplings_.empty()) {
+    auto t = timer_.scope("coupling");
     for (auto* c : couplings_) c->take_from_grid(grid_, state_.time, dt_);
+  }
 }
 
 void Solver::update_remapped_grid() {
-  auto t = timer_.scope("grid update");
-  update_remapped(grid_);
-  apply_grid_conditions(grid_, boundaries_);
+  {
+    auto t = timer_.scope("grid update");
+    for_each_field([&](const ParticleBins&, SparseGrid& grid, const VolumetricAverage*) {
+      update_remapped(grid);
+      apply_grid_conditions(grid, boundaries_);
+    });
+  }
+  apply_contact(NodalVelocity::remapped);
 }
 
 void Solver::grid_to_particles(bool remap) {
   auto t = timer_.scope("grid to particles");
-  mpm::grid_to_particles(particles_, bins_, grid_, transfer_context(), remap);
+  for_each_field([&](const ParticleBins& bins, SparseGrid& grid, const VolumetricAverage*) {
+    mpm::grid_to_particles(particles_, bins, grid, transfer_context(), remap);
+  });
 }
 
 void Solver::compute_velocity_gradient(NodalVelocity which) {
-  {
-    auto t = timer_.scope("velocity gradient");
-    mpm::velocity_gradient(particles_, bins_, grid_, transfer_context(), which);
-  }
-  if (volumetric_) {
-    auto t = timer_.scope("dilatation: node average");
-    volumetric_->average_dilatation(particles_, bins_, grid_, transfer_context());
-  }
+  for_each_field([&](const ParticleBins& bins, SparseGrid& grid, VolumetricAverage* volumetric) {
+    {
+      auto t = timer_.scope("velocity gradient");
+      mpm::velocity_gradient(particles_, bins, grid, transfer_context(), which);
+    }
+    if (volumetric) {
+      auto t = timer_.scope("dilatation: node average");
+      volumetric->average_dilatation(particles_, bins, grid, transfer_context());
+    }
+  });
   if (settings_.shape == ShapeFunction::cpgimp) stretch_particle_domains();
 }
 
@@ -369,6 +416,7 @@ EnergyReport Solver::energy() const {
   e.removed = r.kinetic + r.internal;
   e.removed_momentum = r.momentum;
   e.removed_mass = r.mass;
+  e.contact = state_.contact_work;
   for (const auto* c : couplings_) {
     const CoupledEnergy ce = c->energy();
     e.coupled_kinetic += ce.kinetic;
@@ -379,7 +427,8 @@ EnergyReport Solver::energy() const {
 }
 
 std::size_t Solver::bytes() const {
-  return particles_.bytes() + grid_.bytes() + bins_.bytes() + (volumetric_ ? volumetric_->bytes() : 0);
+  return particles_.bytes() + grid_.bytes() + bins_.bytes() + (volumetric_ ? volumetric_->bytes() : 0) +
+         (contact_ ? contact_->bytes() : 0) + (volumetric1_ ? volumetric1_->bytes() : 0);
 }
 
 }  // namespace hvi::mpm

@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "mpm/boundary.hpp"
+#include "mpm/contact.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_coupling.hpp"
 #include "mpm/material.hpp"
@@ -46,6 +48,8 @@ struct SolverSettings {
   double min_time_step_fraction = 1e-3;
   int reorder_interval = 16;  // steps between sorting particle arrays by material and block
   Dilatation dilatation = Dilatation::particle;
+  // Two velocity fields with contact between them (contact.hpp); none: one field, bodies stick.
+  std::optional<ContactSettings> contact;
 };
 
 // Everything that left the domain, so that nothing is lost silently.
@@ -71,7 +75,10 @@ struct EnergyReport {
   double dissipated = 0.0;  // plastic work and viscous heating, J
   double removed = 0.0;     // kinetic + internal energy carried out of the domain, J
   double coupled_kinetic = 0.0, coupled_strain = 0.0;  // held by coupled models (far field), J
-  double total() const { return kinetic + internal + dissipated + removed + coupled_kinetic + coupled_strain; }
+  double contact = 0.0;     // friction heat of contact (contact.hpp), J
+  double total() const {
+    return kinetic + internal + dissipated + removed + coupled_kinetic + coupled_strain + contact;
+  }
   Vec3 momentum{};          // of the particles in the domain and the coupled models, kg m/s
   Vec3 removed_momentum{};
   double mass = 0.0, removed_mass = 0.0;
@@ -90,6 +97,7 @@ struct SolverState {
   double next_dt = 0.0;
   double first_dt = 0.0;  // the first step's, against which a collapsing step is judged
   RemovedMaterial removed;
+  double contact_work = 0.0;  // J, see EnergyReport::contact
 };
 
 class Solver {
@@ -107,6 +115,7 @@ class Solver {
   const std::vector<std::string>& body_names() const { return body_names_; }
   const SolverSettings& settings() const { return settings_; }
   const SparseGrid& grid() const { return grid_; }
+  const BodyContact* contact() const { return contact_.get(); }  // nullptr without contact
   void add_coupling(GridCoupling* coupling) { couplings_.push_back(coupling); }
   const std::vector<GridCoupling*>& couplings() const { return couplings_; }
 
@@ -141,6 +150,7 @@ class Solver {
   // Phases of a step.
   void bin_particles();
   void particles_to_grid(Scatter what);
+  void apply_contact(NodalVelocity which);
   void couple(GridStage stage);
   void update_grid(bool velocity, bool increment);
   void update_remapped_grid();
@@ -152,6 +162,12 @@ class Solver {
   void remove_escaped_particles();
   void choose_time_step();
 
+  // f(bins, grid, node average or nullptr) for each velocity field: the solver's, then contact's.
+  template <class F>
+  void for_each_field(F&& f) {
+    f(bins_, grid_, volumetric_.get());
+    if (contact_) f(contact_->bins(), contact_->grid(), volumetric1_.get());
+  }
   void sort_by_material_and_block();
   void compute_material_ranges();
   TransferContext transfer_context() const;
@@ -169,6 +185,9 @@ class Solver {
   std::vector<ParticleRange> ranges_;
   std::vector<double>* half_width_ = nullptr;  // GIMP only
   std::unique_ptr<VolumetricAverage> volumetric_;  // Dilatation::node_average only
+  // Contact only: field 1's grid and bins, and its node average.
+  std::unique_ptr<BodyContact> contact_;
+  std::unique_ptr<VolumetricAverage> volumetric1_;
 
   SolverState state_;
   double dt_ = 0.0;  // of the step in progress

@@ -285,6 +285,30 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
 }
 
 template <class Shape>
+void outward_normals_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
+                          std::vector<double>& out) {
+  const GridNode* base = grid.block(0);
+  const auto values = static_cast<std::int64_t>(grid.block_count()) * SparseGrid::block_size * 3;
+  out.resize(static_cast<std::size_t>(values));
+  double* zero = out.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < values; ++i) zero[i] = 0.0;
+  for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
+    NodeStencil<Shape> st;
+    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+      const std::uint32_t p = bins.order[k];
+      double a_cells[3];
+      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+      const double m = P.mass[p];
+      st.for_each(blocks, s.inv_h, [&](GridNode& n, double, const double* g) {
+        double* o = &out[3 * static_cast<std::size_t>(&n - base)];
+        for (int d = 0; d < 3; ++d) o[d] += m * g[d];
+      });
+    }
+  });
+}
+
+template <class Shape>
 void scatter_dispatch(Scatter what, const Particles& P, const ParticleBins& bins, SparseGrid& grid,
                       const Setup& s) {
   switch (what) {
@@ -319,6 +343,15 @@ void node_average(const Particles& particles, const ParticleBins& bins, SparseGr
     node_average_impl<LinearShape>(particles, bins, grid, s, average, sums, out);
   else
     node_average_impl<GimpShape>(particles, bins, grid, s, average, sums, out);
+}
+
+void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                     const TransferContext& context, std::vector<double>& out) {
+  const Setup s = make_setup(grid, context);
+  if (context.shape == ShapeFunction::linear)
+    outward_normals_impl<LinearShape>(particles, bins, grid, s, out);
+  else
+    outward_normals_impl<GimpShape>(particles, bins, grid, s, out);
 }
 
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,

@@ -55,6 +55,11 @@ void node_average(const Particles& particles, const ParticleBins& bins, SparseGr
                   const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
                   std::vector<double>& out);
 
+// Per node, in the order of the grid's node storage, g_I = sum_p m_p grad N_I(x_p) (three values):
+// about -int N_I grad rho, the outward normal of the particles' material at node I (contact.hpp).
+void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                     const TransferContext& context, std::vector<double>& out);
+
 // Which nodal velocity the velocity gradient is taken from.
 enum class NodalVelocity {
   start,     // p: v_I at the start of the step (USF)

@@ -43,8 +43,11 @@ void VolumetricAverage::average_dilatation(Particles& P, const ParticleBins& bin
   for (std::int64_t p = 0; p < n; ++p) value_[p] = L[9 * p] + L[9 * p + 4] + L[9 * p + 8];
   const NodeAverage a = averaging(P);
   node_average(P, bins, grid, context, a, sums_, average_);
+  // Only the points binned here: with contact, the other field's points are averaged on their own grid.
+  const auto binned = static_cast<std::int64_t>(bins.order.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t p = 0; p < n; ++p) {
+  for (std::int64_t k = 0; k < binned; ++k) {
+    const std::uint32_t p = bins.order[k];
     if (!a.counts(p)) continue;
     const double shift = (average_[p] - value_[p]) / 3.0;
     L[9 * p] += shift;

@@ -38,6 +38,7 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
     file.write_attribute("removed_mass", s.removed.mass);
     file.write_attribute("removed_kinetic", s.removed.kinetic);
     file.write_attribute("removed_internal", s.removed.internal);
+    file.write_attribute("contact_work", s.contact_work);
     for (int d = 0; d < 3; ++d)
       file.write_attribute("removed_momentum_" + std::to_string(d), s.removed.momentum[d]);
     for (const auto& [key, value] : extras) file.write_attribute(extra_prefix + key, value);
@@ -76,6 +77,7 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
   s.removed.mass = file.read_double_attribute("removed_mass");
   s.removed.kinetic = file.read_double_attribute("removed_kinetic");
   s.removed.internal = file.read_double_attribute("removed_internal");
+  if (file.has_attribute("contact_work")) s.contact_work = file.read_double_attribute("contact_work");
   for (int d = 0; d < 3; ++d)
     s.removed.momentum[d] = file.read_double_attribute("removed_momentum_" + std::to_string(d));
   for (auto* c : solver.couplings())

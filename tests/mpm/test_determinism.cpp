@@ -20,12 +20,16 @@ struct SceneRun {
 };
 
 SceneRun run_scene(ShapeFunction shape, UpdateScheme scheme, int threads, int reorder_interval,
-                   double sphere_speed = 300.0, Dilatation dilatation = Dilatation::particle) {
+                   double sphere_speed = 300.0, Dilatation dilatation = Dilatation::particle,
+                   bool contact = false) {
   const Threads scope(threads);
   SolverSettings settings;
   settings.shape = shape;
   settings.scheme = scheme;
   settings.dilatation = dilatation;
+  // The right sphere on a velocity field of its own, with friction, so that every branch of the
+  // correction runs.
+  if (contact) settings.contact = ContactSettings{{0, 1, 0}, 0.2};
   settings.reorder_interval = reorder_interval;
   SceneRun r{small_scene(settings, sphere_speed), {}};
   for (int k = 0; k < kSteps; ++k) {
@@ -50,7 +54,7 @@ bool same_energy(const EnergyReport& a, const EnergyReport& b) {
   return a.kinetic == b.kinetic && a.internal == b.internal && a.dissipated == b.dissipated &&
          a.removed == b.removed && a.momentum == b.momentum &&
          a.removed_momentum == b.removed_momentum && a.mass == b.mass &&
-         a.removed_mass == b.removed_mass;
+         a.removed_mass == b.removed_mass && a.contact == b.contact;
 }
 
 struct Case {
@@ -59,6 +63,7 @@ struct Case {
   const char* name;
   double sphere_speed = 300.0;
   Dilatation dilatation = Dilatation::particle;
+  bool contact = false;
 };
 
 // Names the case in test listings (instead of a byte dump of the struct).
@@ -73,15 +78,18 @@ class Determinism : public ::testing::TestWithParam<Case> {};
 // min) or summed over fixed chunks in a fixed order.
 TEST_P(Determinism, ThreadCountDoesNotChangeBits) {
   const Case c = GetParam();
-  const SceneRun one = run_scene(c.shape, c.scheme, 1, 5, c.sphere_speed, c.dilatation);
+  const SceneRun one = run_scene(c.shape, c.scheme, 1, 5, c.sphere_speed, c.dilatation, c.contact);
   ASSERT_EQ(one.solver->step_count(), kSteps);
   // The run did what the scene promises: part of the cube left (removal inside the run) and the
   // rest is still there; reorders happened at steps 5, 10, ... .
   EXPECT_GT(one.solver->removed().particles, 0);
   EXPECT_FALSE(one.events.empty());
+  if (c.contact) {
+    EXPECT_GT(one.solver->energy().contact, 0.0);  // the spheres met and slid
+  }
   for (const int threads : {2, 3}) {
     SCOPED_TRACE(std::to_string(threads) + " threads");
-    const SceneRun other = run_scene(c.shape, c.scheme, threads, 5, c.sphere_speed, c.dilatation);
+    const SceneRun other = run_scene(c.shape, c.scheme, threads, 5, c.sphere_speed, c.dilatation, c.contact);
     EXPECT_TRUE(identical_particles(one.solver->particles(), other.solver->particles()));
     EXPECT_TRUE(identical_state(*one.solver, *other.solver));
     EXPECT_TRUE(same_events(one.events, other.events));
@@ -104,7 +112,14 @@ INSTANTIATE_TEST_SUITE_P(
                       // The node-averaged dilatation's two extra passes (a coloured scatter per body
                       // and a gather) keep the bits too.
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_node_average", 300.0,
-                           Dilatation::node_average}),
+                           Dilatation::node_average},
+                      // Contact: a second grid and bins for the right sphere, and a correction
+                      // pass over the nodes the fields share (at the start, end and remapped
+                      // velocities: MUSL; USF corrects the start velocity before the stress).
+                      Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_contact", 300.0,
+                           Dilatation::particle, true},
+                      Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf_contact_node_average", 300.0,
+                           Dilatation::node_average, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 // The periodic reorder really permutes the arrays (so the tests above exercise it): with

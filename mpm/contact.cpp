@@ -1,0 +1,113 @@
+#include "mpm/contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace hvi::mpm {
+
+BodyContact::BodyContact(const GridGeometry& geometry, ContactSettings settings)
+    : settings_(std::move(settings)), grid_(geometry) {}
+
+const std::vector<std::uint8_t>& BodyContact::assign_fields(const Particles& P) {
+  field_.resize(P.size());
+  for (std::size_t p = 0; p < P.size(); ++p)
+    field_[p] = settings_.impactor.at(static_cast<std::size_t>(P.body[p]));
+  return field_;
+}
+
+void BodyContact::compute_normals(const Particles& P, const ParticleBins& bins0, SparseGrid& grid0,
+                                  const TransferContext& context) {
+  outward_normals(P, bins0, grid0, context, normal0_);
+  outward_normals(P, bins_, grid_, context, normal1_);
+}
+
+namespace {
+
+// The nodal velocity `which` of node n, and where a correction of it goes.
+void velocity(const GridNode& n, NodalVelocity which, double* v) {
+  for (int d = 0; d < 3; ++d)
+    v[d] = which == NodalVelocity::start ? n.p[d] : which == NodalVelocity::end ? n.p[d] + n.f[d] : n.q[d];
+}
+double* corrected(GridNode& n, NodalVelocity which) {
+  return which == NodalVelocity::start ? n.p : which == NodalVelocity::end ? n.f : n.q;
+}
+
+}  // namespace
+
+double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
+  const auto blocks = static_cast<std::int64_t>(grid_.block_count());
+  const std::size_t nodes = grid_.block_count() * SparseGrid::block_size;
+  const bool remapped = which == NodalVelocity::remapped;
+  if (which == NodalVelocity::end || in_contact_.size() != nodes) in_contact_.assign(nodes, 0);
+  block_work_.assign(static_cast<std::size_t>(blocks), 0.0);
+  const GridNode* base0 = grid0.block(0);
+  const GridNode* base1 = grid_.block(0);
+  const double mu = settings_.friction;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::uint32_t b0 = grid0.find(grid_.key(static_cast<std::uint32_t>(b)));
+    if (b0 == SparseGrid::none) continue;
+    GridNode* nodes1 = grid_.block(static_cast<std::uint32_t>(b));
+    GridNode* nodes0 = grid0.block(b0);
+    double work = 0.0;
+    for (int l = 0; l < SparseGrid::block_size; ++l) {
+      GridNode& n1 = nodes1[l];
+      GridNode& n0 = nodes0[l];
+      const double m0 = n0.mass, m1 = n1.mass;
+      if (m0 <= 0.0 || m1 <= 0.0) continue;
+      const std::size_t node1 = static_cast<std::size_t>(&n1 - base1);
+      if (remapped && !in_contact_[node1]) continue;
+      const double* g0 = &normal0_[3 * static_cast<std::size_t>(&n0 - base0)];
+      const double* g1 = &normal1_[3 * node1];
+      double n[3] = {g1[0] - g0[0], g1[1] - g0[1], g1[2] - g0[2]};
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(length > 0.0)) continue;
+      for (double& c : n) c /= length;
+      double v0[3], v1[3];
+      velocity(n0, which, v0);
+      velocity(n1, which, v1);
+      // In the relative velocity w = v1 - v0, which stays well conditioned when one field's mass at
+      // the node is a GIMP tail many orders below the other's: v1 - v_cm = (m0 / M) w.
+      double w[3], wn = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        w[d] = v1[d] - v0[d];
+        wn += w[d] * n[d];
+      }
+      // Separating (or sliding along the surface): no contact, except that the remapped velocity of
+      // a node in contact this step follows the end velocity's condition whichever its sign.
+      if (!remapped && !(wn > 0.0)) continue;
+      if (which == NodalVelocity::end) in_contact_[node1] = 1;
+      double tangent[3], t_length = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        tangent[d] = w[d] - wn * n[d];
+        t_length += tangent[d] * tangent[d];
+      }
+      t_length = std::sqrt(t_length);
+      const double t_change = t_length > 0.0 ? std::min(mu * std::fabs(wn), t_length) : 0.0;
+      const double slip = t_length > 0.0 ? t_change / t_length : 0.0;
+      // dw: the change of the relative velocity; field 1 takes m0 / M of it, field 0 m1 / M.
+      const double M = m0 + m1;
+      double* c0 = corrected(n0, which);
+      double* c1 = corrected(n1, which);
+      for (int d = 0; d < 3; ++d) {
+        const double dw = -wn * n[d] - slip * tangent[d];
+        c0[d] -= (m1 / M) * dw;
+        c1[d] += (m0 / M) * dw;
+      }
+      // Friction heat: the friction impulse (m0 m1 / M) dw_t times the slip it leaves, |w_t| - dw_t.
+      if (which == NodalVelocity::end) work += (m0 * m1 / M) * t_change * (t_length - t_change);
+    }
+    block_work_[static_cast<std::size_t>(b)] = work;
+  }
+  double total = 0.0;
+  for (const double w : block_work_) total += w;  // in block order: the same for any thread count
+  return total;
+}
+
+std::size_t BodyContact::bytes() const {
+  return grid_.bytes() + bins_.bytes() + field_.capacity() + in_contact_.capacity() +
+         (normal0_.capacity() + normal1_.capacity() + block_work_.capacity()) * sizeof(double);
+}
+
+}  // namespace hvi::mpm
