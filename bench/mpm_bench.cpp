@@ -10,12 +10,13 @@ namespace {
 
 // 1,000,000 particles (50^3 cells x 8 particles per cell), MUSL, 100 steps; range(0) threads.
 void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
-               hvi::mpm::Dilatation dilatation = hvi::mpm::Dilatation::particle) {
+               hvi::mpm::Dilatation dilatation = hvi::mpm::Dilatation::particle, bool contact = false) {
   const int threads = static_cast<int>(state.range(0));
   omp_set_num_threads(threads);
   hvi::mpm::SolverSettings settings;
   settings.shape = shape;
   settings.dilatation = dilatation;
+  if (contact) settings.contact = hvi::mpm::ContactSettings{};
   const int steps = 100;
   double particles = 0, bytes = 0;
   for (auto _ : state) {
@@ -44,9 +45,16 @@ void ElasticBlockCpGimpNodeAverage(benchmark::State& state) {
   run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::node_average);
 }
 
+// cpGIMP with [contact] between the block's two halves: a second grid, a normal pass and the
+// corrections at the nodes the halves share.
+void ElasticBlockCpGimpContact(benchmark::State& state) {
+  run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::particle, true);
+}
+
 BENCHMARK(ElasticBlock)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(ElasticBlockCpGimp)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(ElasticBlockCpGimpNodeAverage)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(ElasticBlockCpGimpContact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 
