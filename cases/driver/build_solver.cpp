@@ -43,6 +43,13 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
   settings.flip = g.flip;
   settings.dilatation = g.dilatation == "node-average" ? mpm::Dilatation::node_average : mpm::Dilatation::particle;
   settings.cfl = g.cfl;
+  if (scene.contact) {
+    mpm::ContactSettings contact;
+    contact.impactor.assign(scene.bodies.size(), 0);
+    for (const auto b : scene.contact->bodies) contact.impactor[b] = 1;
+    contact.friction = scene.contact->friction;
+    settings.contact = contact;
+  }
   if (g.max_time_step) settings.max_time_step = *g.max_time_step;
 
   std::vector<mpm::GridBoundary> boundaries;

@@ -235,7 +235,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   mpm::Solver& s = *solver;
   mpm::PhaseTimer& timer = s.timer();
   mpm::io::SnapshotWriter snapshots(dir);
-  mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1, hybrid != nullptr);
+  mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1, hybrid != nullptr,
+                                s.contact() != nullptr);
   probes->open(dir, options.resume ? s.step_count() : -1);
   auto write_snapshots = [&] {
     snapshots.write(s);
@@ -368,10 +369,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     fmt::print("  wall time of all the invocations that made this run: {}\n",
                std::isnan(earlier_wall) ? std::string("unknown (its checkpoint predates the record)")
                                         : fmt::format("{:.2f} s", earlier_wall + wall));
-  fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}{}; balance {:+.3f}%\n",
+  fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}{}{}; balance {:+.3f}%\n",
              initial_energy, e.total(), e.kinetic, e.internal, e.dissipated, e.removed,
              hybrid ? fmt::format(" + far field kinetic {:.6g} + strain {:.6g}", e.coupled_kinetic, e.coupled_strain) : "",
-             100 * balance);
+             s.contact() ? fmt::format(" + contact {:.6g}", e.contact) : "", 100 * balance);
   fmt::print("  momentum (incl. removed): ({:.6g}, {:.6g}, {:.6g}) kg m/s\n", e.momentum[0] + e.removed_momentum[0],
              e.momentum[1] + e.removed_momentum[1], e.momentum[2] + e.removed_momentum[2]);
   if (s.removed().particles > 0)

@@ -1,5 +1,6 @@
 #include "cases/driver/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -280,6 +281,32 @@ std::array<Vec3, 2> bounds_of(const BodySettings& b) {
       b.shape);
 }
 
+// [contact] names bodies that exist (panel parts as <panel>.<part>), at least one and not all.
+void read_contact(const toml::table& t, Scene& s, Checker& c) {
+  ContactSettings contact;
+  contact.friction = number(t, "friction");
+  std::string known;
+  for (const auto& b : s.bodies) known += (known.empty() ? "'" : ", '") + b.name + "'";
+  for (const auto& node : *t["bodies"].as_array()) {
+    const std::string name = node.value_or(std::string{});
+    std::size_t found = s.bodies.size();
+    for (std::size_t b = 0; b < s.bodies.size(); ++b)
+      if (s.bodies[b].name == name) found = b;
+    if (found == s.bodies.size())
+      c.error("contact.bodies", fmt::format("no body named '{}'; bodies: {}", name, known));
+    else if (s.far_field && name.rfind(s.panels.at(s.far_field->panel).name + ".", 0) == 0)
+      c.error("contact.bodies", fmt::format("'{}' is part of the far field's panel, whose finite elements share "
+                                            "the other field's nodes; name the impactor's bodies only", name));
+    else if (std::find(contact.bodies.begin(), contact.bodies.end(), found) == contact.bodies.end())
+      contact.bodies.push_back(found);
+  }
+  if (contact.bodies.empty())
+    c.error("contact.bodies", fmt::format("expected the impactor's bodies, at least one of {}", known));
+  else if (contact.bodies.size() == s.bodies.size())
+    c.error("contact.bodies", "every body is named: contact needs bodies on both sides; name the impactor's only");
+  s.contact = contact;
+}
+
 void read_bodies(const toml::array& array, Scene& s, Checker& c) {
   for (std::size_t i = 0; i < array.size(); ++i) {
     const toml::table& t = *array[i].as_table();
@@ -412,6 +439,7 @@ Scene resolve(const toml::table& document, const std::string& file) {
   if (far_field) detail::read_far_field(*far_field, s, v, c.errors);
   if (s.bodies.empty()) c.error("body", "a scene needs at least one [[body]] or [[panel]]");
   detail::read_refinements(*r["refinement"].as_array(), s, v, c.errors);
+  if (const toml::table* contact = r["contact"].as_table()) read_contact(*contact, s, c);
   {
     std::vector<std::string> body_names;
     for (const auto& b : s.bodies) body_names.push_back(b.name);

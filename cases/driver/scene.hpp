@@ -133,6 +133,12 @@ struct FarFieldSettings {
   bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
 };
 
+// [contact]: the impactor's bodies (indices into Scene::bodies) and the friction coefficient.
+struct ContactSettings {
+  std::vector<std::size_t> bodies;
+  double friction = 0.0;
+};
+
 struct Scene {
   std::string file;
   std::string title;
@@ -148,6 +154,7 @@ struct Scene {
   std::vector<PanelSettings> panels;
   std::vector<RefinementSettings> refinements;
   std::optional<FarFieldSettings> far_field;  // none: a pure MPM scene
+  std::optional<ContactSettings> contact;     // none: one velocity field
   toml::table resolved;  // every key, defaults filled, SI values: written next to the output
   std::vector<std::string> warnings;  // likely mistakes that are not errors ("no EOS at 5 km/s")
   std::vector<MeasureSettings> measures;  // [[measure]]: quantities of interest at the end

@@ -265,6 +265,19 @@ TableSpec far_field_table() {
   return t;
 }
 
+// Two velocity fields on the grid, the impactor's and the rest's, with contact between them.
+TableSpec contact_table() {
+  TableSpec t{.name = "contact",
+              .doc = "Contact between an impactor and everything else (mpm/contact.hpp): the bodies "
+                     "named here move on a velocity field of their own, the rest on another; where both "
+                     "meet on a grid node they may not interpenetrate but may slide and separate "
+                     "(Bardenhagen et al. 2000, with Coulomb friction). Absent: one velocity field, "
+                     "bodies sharing a node move together (the paper's)."};
+  t.string_list_required("bodies", "The impactor's bodies (e.g. [\"projectile\"]); at least one, not all")
+      .number("friction", non_negative(), 0.0, "Coulomb friction coefficient between the two fields");
+  return t;
+}
+
 // Zones where bodies are sampled with more points per cell (paper Fig. 4).
 TableSpec refinement_table() {
   TableSpec box{.name = "box", .doc = "An axis-aligned box zone."};
@@ -303,6 +316,7 @@ TableSpec make_schema() {
       .table(panel_table())
       .table(refinement_table())
       .table(far_field_table())
+      .table(contact_table())
       .table(measure_table());
   return root;
 }

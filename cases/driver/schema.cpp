@@ -196,6 +196,12 @@ TableSpec& TableSpec::string_list(std::string name, std::vector<std::string> def
   return *this;
 }
 
+TableSpec& TableSpec::string_list_required(std::string name, std::string doc) {
+  keys.push_back(make_key(std::move(name), ValueKind::string_list, std::move(doc)));
+  keys.back().required = true;
+  return *this;
+}
+
 TableSpec& TableSpec::table(TableSpec sub) {
   tables.push_back(std::move(sub));
   return *this;

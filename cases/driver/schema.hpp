@@ -85,6 +85,7 @@ struct TableSpec {
                     std::optional<std::string> default_value, std::string doc);
   TableSpec& choice_required(std::string name, std::vector<std::string> choices, std::string doc);
   TableSpec& string_list(std::string name, std::vector<std::string> default_value, std::string doc);
+  TableSpec& string_list_required(std::string name, std::string doc);
   TableSpec& optional_quantity(std::string name, Dim dim, Range range, std::string doc);
   TableSpec& table(TableSpec sub);
 };

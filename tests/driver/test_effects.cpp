@@ -103,18 +103,28 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
   EXPECT_TRUE(plain.phases.count("eos: elastic bulk"));
 }
 
-// The node-averaged dilatation (grid.dilatation) is two phases of the step, run only when named;
-// it adds no particle field.
-TEST(Effects, NodeAveragedDilatationRunsOnlyWhenNamed) {
+// A scene setting that adds phases to the step runs them only when named, and adds no particle
+// field or snapshot dataset.
+void phases_only_when_named(const std::string& setting, const std::vector<std::string>& phases) {
   const std::vector<std::string> jc = {"strength=johnson-cook", "eos=mie-gruneisen"};
   const Effects plain = run_with(jc);
-  const Effects averaged = run_with(jc, {"grid.dilatation=node-average"});
-  for (const char* phase : {"dilatation: node average", "mean stress: node average"}) {
+  const Effects named = run_with(jc, {setting});
+  for (const auto& phase : phases) {
     EXPECT_FALSE(plain.phases.count(phase)) << phase;
-    EXPECT_TRUE(averaged.phases.count(phase)) << phase;
+    EXPECT_TRUE(named.phases.count(phase)) << phase;
   }
-  EXPECT_EQ(plain.fields, averaged.fields);
-  EXPECT_EQ(plain.datasets, averaged.datasets);
+  EXPECT_EQ(plain.fields, named.fields);
+  EXPECT_EQ(plain.datasets, named.datasets);
+}
+
+// The node-averaged dilatation (grid.dilatation): two passes over the points.
+TEST(Effects, NodeAveragedDilatationRunsOnlyWhenNamed) {
+  phases_only_when_named("grid.dilatation=node-average", {"dilatation: node average", "mean stress: node average"});
+}
+
+// Contact ([contact]): a second grid, a normal pass and the corrections.
+TEST(Effects, ContactRunsOnlyWhenNamed) {
+  phases_only_when_named("contact.bodies=[\"flyer\"]", {"contact", "contact: normals"});
 }
 
 }  // namespace

@@ -190,6 +190,38 @@ TEST(Scene, OverrideAddressesBodiesByName) {
   EXPECT_EQ(s.grid.scheme, "usl");
 }
 
+// [contact]: the impactor's bodies by name, resolved to body indices; a name that is no body, or
+// every body (no second field), is refused at the key, and the table needs its bodies.
+TEST(Scene, ContactNamesTheImpactorsBodies) {
+  const std::string two = valid + R"(
+[[body]]
+name = "plate"
+material = "al"
+box = { lower = ["0 mm", "0 mm", "0 mm"], upper = ["10 mm", "5 mm", "0.5 mm"] }
+
+[contact]
+bodies = ["ball"]
+friction = 0.2
+)";
+  const Scene s = parse_scene(two, "scene.toml");
+  ASSERT_TRUE(s.contact.has_value());
+  EXPECT_EQ(s.contact->bodies, std::vector<std::size_t>{0});
+  EXPECT_DOUBLE_EQ(s.contact->friction, 0.2);
+  EXPECT_FALSE(parse_scene(valid, "scene.toml").contact.has_value());
+
+  Diagnostic d = error_for(two, "contact.bodies", {"contact.bodies=[\"bal\"]"});
+  EXPECT_TRUE(contains(d.text(), "no body named 'bal'; bodies: 'ball', 'plate'")) << d.text();
+  d = error_for(two, "contact.bodies", {"contact.bodies=[\"ball\", \"plate\"]"});
+  EXPECT_TRUE(contains(d.text(), "every body is named")) << d.text();
+  d = error_for(replace(two, "bodies = [\"ball\"]", "bodies = []"), "contact.bodies");
+  EXPECT_EQ(d.line, 32);  // bodies = []
+  EXPECT_TRUE(contains(d.text(), "at least one of 'ball', 'plate'")) << d.text();
+  d = error_for(replace(two, "bodies = [\"ball\"]\n", ""), "contact.bodies");
+  EXPECT_TRUE(contains(d.text(), "missing")) << d.text();
+  d = error_for(two, "contact.friction", {"contact.friction=-0.1"});
+  EXPECT_TRUE(contains(d.text(), "-0.1")) << d.text();
+}
+
 TEST(Scene, EveryErrorIsReportedNotJustTheFirst) {
   std::string text = replace(valid, "\"0.5 mm\"", "\"0.5 kg\"");
   text = replace(text, "name = \"al\"", "name = \"al\"\ncolour = \"grey\"");
