@@ -63,6 +63,12 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
     fmt::print("  material '{}'{}: {} (density {:.4g} kg/m^3, E {:.4g} Pa, nu {})\n", m.name,
                m.library.empty() ? "" : " (library " + m.library + ")", m.effects(), m.models.density,
                m.models.youngs_modulus, m.models.poisson_ratio);
+  if (scene.contact) {
+    std::string names;
+    for (const auto b : scene.contact->bodies) names += (names.empty() ? "'" : ", '") + scene.bodies[b].name + "'";
+    fmt::print("  contact: {} on a velocity field of their own, the other bodies on another; friction {}\n", names,
+               scene.contact->friction);
+  }
   if (hybrid)
     fmt::print("  far field of panel '{}' outside the MPM zone x in [{:.4g}, {:.4g}], y in [{:.4g}, {:.4g}] m: {}\n",
                scene.panels[scene.far_field->panel].name, scene.far_field->zone[0], scene.far_field->zone[2],

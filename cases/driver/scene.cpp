@@ -300,7 +300,7 @@ void read_contact(const toml::table& t, Scene& s, Checker& c) {
     else if (std::find(contact.bodies.begin(), contact.bodies.end(), found) == contact.bodies.end())
       contact.bodies.push_back(found);
   }
-  if (contact.bodies.empty())
+  if (t["bodies"].as_array()->empty())
     c.error("contact.bodies", fmt::format("expected the impactor's bodies, at least one of {}", known));
   else if (contact.bodies.size() == s.bodies.size())
     c.error("contact.bodies", "every body is named: contact needs bodies on both sides; name the impactor's only");
