@@ -87,6 +87,13 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   EXPECT_NE(d.message.find("'aluminium' (panel.front) names strength = \"elastic\""), std::string::npos) << d.message;
 }
 
+// The far field's elements share the solver's (field 0's) nodes: a part of its panel cannot be on
+// the impactor's field.
+TEST(SceneFarField, ContactRefusesThePanelsParts) {
+  const Diagnostic d = error_for({"contact.bodies=[\"panel.front\"]"}, "contact.bodies");
+  EXPECT_NE(d.text().find("'panel.front' is part of the far field's panel"), std::string::npos) << d.text();
+}
+
 TEST(SceneFarField, PlasticFacesheetsOnlyWhenNamed) {
   EXPECT_FALSE(parse_scene(small_hybrid(), "small_hybrid.toml").far_field->plastic_faces);
   const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml",
