@@ -45,8 +45,8 @@ void ElasticBlockCpGimpNodeAverage(benchmark::State& state) {
   run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::node_average);
 }
 
-// cpGIMP with [contact] between the block's two halves: a second grid, a normal pass and the
-// corrections at the nodes the halves share.
+// cpGIMP with [contact] between the block's two halves: a second grid, a normal pass over the
+// blocks where they meet and the corrections at the nodes they share.
 void ElasticBlockCpGimpContact(benchmark::State& state) {
   run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::particle, true);
 }

@@ -16,10 +16,32 @@ const std::vector<std::uint8_t>& BodyContact::assign_fields(const Particles& P) 
   return field_;
 }
 
+namespace {
+
+// Per owner block of `bins` (on `grid`): 1 if a block its particles reach is active in `other`,
+// where the fields can meet. A normal is needed only there.
+void owners_meeting(const ParticleBins& bins, const SparseGrid& grid, const SparseGrid& other,
+                    std::vector<std::uint8_t>& out) {
+  const auto owners = static_cast<std::int64_t>(bins.owner_count());
+  out.assign(static_cast<std::size_t>(owners), 0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < owners; ++b)
+    for (const std::uint32_t reached : bins.neighbours[static_cast<std::size_t>(b)])
+      if (other.find(grid.key(reached)) != SparseGrid::none) {
+        out[static_cast<std::size_t>(b)] = 1;
+        break;
+      }
+}
+
+}  // namespace
+
 void BodyContact::compute_normals(const Particles& P, const ParticleBins& bins0, SparseGrid& grid0,
                                   const TransferContext& context) {
-  outward_normals(P, bins0, grid0, context, normal0_);
-  outward_normals(P, bins_, grid_, context, normal1_);
+  // The impactor's field is small, the panel's large: each scatters only the blocks where they meet.
+  owners_meeting(bins0, grid0, grid_, meeting0_);
+  owners_meeting(bins_, grid_, grid0, meeting1_);
+  outward_normals(P, bins0, grid0, context, normal0_, &meeting0_);
+  outward_normals(P, bins_, grid_, context, normal1_, &meeting1_);
 }
 
 namespace {
@@ -106,7 +128,8 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
 }
 
 std::size_t BodyContact::bytes() const {
-  return grid_.bytes() + bins_.bytes() + field_.capacity() + in_contact_.capacity() +
+  return grid_.bytes() + bins_.bytes() + field_.capacity() + in_contact_.capacity() + meeting0_.capacity() +
+         meeting1_.capacity() +
          (normal0_.capacity() + normal1_.capacity() + block_work_.capacity()) * sizeof(double);
 }
 

@@ -74,6 +74,7 @@ class BodyContact {
   std::vector<double> normal0_, normal1_;  // g_k per node, in each grid's node storage order
   std::vector<double> block_work_;
   std::vector<std::uint8_t> in_contact_;  // per field-1 node: corrected at the end stage this step
+  std::vector<std::uint8_t> meeting0_, meeting1_;  // per owner block of each field: near the other
 };
 
 }  // namespace hvi::mpm

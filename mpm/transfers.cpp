@@ -286,7 +286,7 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
 
 template <class Shape>
 void outward_normals_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
-                          std::vector<double>& out) {
+                          std::vector<double>& out, const std::vector<std::uint8_t>* owners) {
   const GridNode* base = grid.block(0);
   const auto values = static_cast<std::int64_t>(grid.block_count()) * SparseGrid::block_size * 3;
   out.resize(static_cast<std::size_t>(values));
@@ -294,6 +294,7 @@ void outward_normals_impl(const Particles& P, const ParticleBins& bins, SparseGr
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < values; ++i) zero[i] = 0.0;
   for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
+    if (owners && !(*owners)[b]) return;
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
       const std::uint32_t p = bins.order[k];
@@ -346,12 +347,13 @@ void node_average(const Particles& particles, const ParticleBins& bins, SparseGr
 }
 
 void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
-                     const TransferContext& context, std::vector<double>& out) {
+                     const TransferContext& context, std::vector<double>& out,
+                     const std::vector<std::uint8_t>* owners) {
   const Setup s = make_setup(grid, context);
   if (context.shape == ShapeFunction::linear)
-    outward_normals_impl<LinearShape>(particles, bins, grid, s, out);
+    outward_normals_impl<LinearShape>(particles, bins, grid, s, out, owners);
   else
-    outward_normals_impl<GimpShape>(particles, bins, grid, s, out);
+    outward_normals_impl<GimpShape>(particles, bins, grid, s, out, owners);
 }
 
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,

@@ -57,8 +57,11 @@ void node_average(const Particles& particles, const ParticleBins& bins, SparseGr
 
 // Per node, in the order of the grid's node storage, g_I = sum_p m_p grad N_I(x_p) (three values):
 // about -int N_I grad rho, the outward normal of the particles' material at node I (contact.hpp).
+// With `owners`, only the particles of owner blocks b with owners[b] != 0 scatter (the others'
+// nodes are left at zero).
 void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
-                     const TransferContext& context, std::vector<double>& out);
+                     const TransferContext& context, std::vector<double>& out,
+                     const std::vector<std::uint8_t>* owners = nullptr);
 
 // Which nodal velocity the velocity gradient is taken from.
 enum class NodalVelocity {
