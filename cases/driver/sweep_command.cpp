@@ -104,9 +104,16 @@ std::vector<std::pair<std::string, std::string>> read_measurements(const fs::pat
 std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
 
 // sweep.csv from what the run directories hold now.
-void write_table(const Study& study, const fs::path& out, const std::map<std::string, std::string>& status_of) {
-  std::vector<std::string> axes;
+// Rows: the runs selected now and every other run of the study already in `out`, in the study's
+// order, so runs made one `--only` at a time into one directory share one table.
+void write_table(const Study& study, const std::vector<std::string>& selected, const fs::path& out,
+                 const std::map<std::string, std::string>& status_of) {
+  std::vector<SweepRun> runs;
   for (const auto& r : study.runs)
+    if (std::find(selected.begin(), selected.end(), r.name) != selected.end() || fs::exists(out / r.name))
+      runs.push_back(r);
+  std::vector<std::string> axes;
+  for (const auto& r : runs)
     for (const auto& [axis, label] : r.labels)
       if (std::find(axes.begin(), axes.end(), axis) == axes.end()) axes.push_back(axis);
   std::vector<std::string> columns{"run"};
@@ -114,7 +121,7 @@ void write_table(const Study& study, const fs::path& out, const std::map<std::st
   for (const char* c : {"status", "wall_seconds", "steps", "particles", "peak_memory_bytes", "energy_balance"}) columns.emplace_back(c);
   const std::size_t fixed = columns.size();
   std::vector<std::map<std::string, std::string>> rows;
-  for (const auto& r : study.runs) {
+  for (const auto& r : runs) {
     std::map<std::string, std::string> row{{"run", r.name}};
     for (const auto& [axis, label] : r.labels) row[axis] = label;
     const fs::path dir = out / r.name;
@@ -275,6 +282,7 @@ Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool 
 
 int run_sweep(const SweepOptions& o) {
   Study study = load_study(o.study, o.overrides);
+  const Study whole = study;  // sweep.csv keeps the rows of runs made by earlier `--only`s
   if (!o.only.empty()) {
     std::vector<SweepRun> kept;
     for (const auto& name : o.only) {
@@ -318,6 +326,8 @@ int run_sweep(const SweepOptions& o) {
   }
   fs::create_directories(o.out);
   std::map<std::string, std::string> status_of;
+  std::vector<std::string> selected;
+  for (const auto& run : study.runs) selected.push_back(run.name);
   int code = success;
   for (std::size_t k = 0; k < study.runs.size(); ++k) {
     const SweepRun& run = study.runs[k];
@@ -360,7 +370,7 @@ int run_sweep(const SweepOptions& o) {
       summary = read_run_summary(dir);
       if (status == interrupted) {
         fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n", run.name);
-        write_table(study, o.out, status_of);
+        write_table(whole, selected, o.out, status_of);
         return interrupted;
       }
       if (status != success || !summary.finished()) {
@@ -375,7 +385,7 @@ int run_sweep(const SweepOptions& o) {
       const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");
       if (status != success) fmt::print("    not measured (see {})\n", (dir / "measure.log").string());
     }
-    write_table(study, o.out, status_of);  // after every run: the table is current even if stopped
+    write_table(whole, selected, o.out, status_of);  // after every run: the table is current even if stopped
   }
   fmt::print("hvi sweep: {} (one row per run); hvi fit {} --form front|rear|taper; hvi report {}\n",
              (fs::path(o.out) / "sweep.csv").string(), o.out, o.out);

@@ -137,6 +137,25 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   EXPECT_EQ(read(out / "sweep.csv"), after);
 }
 
+TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
+  // Long runs go one `--only` at a time into one directory; the table keeps the earlier ones'
+  // rows, in the study's order, and lists no run that has not been started.
+  const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep_only";
+  fs::remove_all(out);
+  const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_only.log";
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only still", log), 0) << read(log);
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1", log), 0) << read(log);
+  const auto rows = table(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 2u) << read(out / "sweep.csv");
+  EXPECT_EQ(rows.at("still").at("status"), "finished");
+  EXPECT_EQ(rows.at("v100_r1").at("status"), "finished");
+  EXPECT_EQ(rows.at("v100_r1").at("speed"), "v100");
+  // The same drift as in the full sweep: 100 m/s x 2 us.
+  EXPECT_NEAR(std::stod(rows.at("v100_r1").at("front")) - std::stod(rows.at("still").at("front")), 0.2e-3, 1e-12);
+  const std::string csv = read(out / "sweep.csv");
+  EXPECT_LT(csv.find("\nv100_r1,"), csv.find("\nstill,"));  // the study's order
+}
+
 TEST(Sweep, ABadLevelStopsTheSweepBeforeAnythingRuns) {
   const fs::path dir = fs::path(testing::TempDir()) / "hvi_sweep_bad";
   fs::remove_all(dir);
