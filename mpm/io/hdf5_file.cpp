@@ -14,13 +14,41 @@ struct Handle {
   }
 };
 
+// Why the last HDF5 call failed, from the library's error stack: the operating system's message
+// where a file driver recorded one ("No space left on device"), else the innermost description.
+std::string reason() {
+  struct Found {
+    std::string innermost, system;
+  } found;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
+        auto& f = *static_cast<Found*>(data);
+        const std::string desc = e->desc ? e->desc : "";
+        if (!desc.empty()) f.innermost = desc;
+        const std::string tag = "error message = '";
+        if (const auto at = desc.find(tag); at != std::string::npos) {
+          const auto end = desc.find('\'', at + tag.size());
+          f.system = desc.substr(at + tag.size(), end == std::string::npos ? end : end - at - tag.size());
+        }
+        return 0;
+      },
+      &found);
+  return !found.system.empty() ? found.system : found.innermost;
+}
+
+[[noreturn]] void fail(const std::string& what, const std::string& path) {
+  const std::string why = reason();
+  throw Hdf5Error("HDF5: cannot " + what + " in '" + path + "'" + (why.empty() ? "" : ": " + why));
+}
+
 hid_t check(hid_t id, const std::string& what, const std::string& path) {
-  if (id < 0) throw Hdf5Error("HDF5: cannot " + what + " in '" + path + "'");
+  if (id < 0) fail(what, path);
   return id;
 }
 
 void check_status(herr_t status, const std::string& what, const std::string& path) {
-  if (status < 0) throw Hdf5Error("HDF5: cannot " + what + " in '" + path + "'");
+  if (status < 0) fail(what, path);
 }
 
 void write_dataset(hid_t file, const std::string& path, const std::string& name, hid_t type,

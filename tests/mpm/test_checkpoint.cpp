@@ -293,5 +293,26 @@ TEST(EnergyLogFile, ResumeKeepsRowsUpToStep) {
   EXPECT_EQ(kept.rfind(io::EnergyLog::header(), 0), 0u);
 }
 
+TEST(Hdf5File, ErrorsSayWhyTheSystemRefused) {
+  // A full disk ended a 90-minute run with only "cannot write dataset": the message now carries
+  // the operating system's reason, which HDF5's file driver records.
+  const std::string path = "/nonexistent_hvi_directory/snapshot.h5";
+  try {
+    io::Hdf5File file(path, io::Hdf5File::Mode::create);
+    FAIL() << "created " << path;
+  } catch (const io::Hdf5Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cannot create file in '" + path + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find(": No such file or directory"), std::string::npos) << message;
+  }
+  // A full disk: /dev/full takes the open and refuses every write with ENOSPC.
+  try {
+    io::Hdf5File file("/dev/full", io::Hdf5File::Mode::create);
+    FAIL() << "wrote to /dev/full";
+  } catch (const io::Hdf5Error& e) {
+    EXPECT_NE(std::string(e.what()).find(": No space left on device"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hvi::mpm::test
