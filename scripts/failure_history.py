@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Where and when a body failed, read from a run's snapshots: the fraction of its points failed,
+grouped by where each point started, at every snapshot time.
+
+  failure_history.py RUN --body NAME [--by radius|layer] [--bin "0.5 mm"] [--radius "4 mm"]
+                         [--axis "X,Y"]
+
+Each of the body's points is followed by id from the first snapshot and put in a group:
+  --by radius (default): by its distance from the impact axis (parallel to z through --axis,
+    default "0 mm,0 mm") in bins of --bin, out to --radius (default 8 bins);
+  --by layer: by the z it started at (one column per point layer of a facesheet, top first),
+    counting only points that started within --radius of the axis.
+A point counts as failed at a snapshot if its `failed` field is non-zero there (failed or
+eroded) or if it is no longer in the model (it left the grid). Output: CSV on standard output,
+one row per snapshot (time in s, then one fraction per group, its column named after the group
+in mm); on standard error how many points each group holds.
+"""
+import argparse
+import json
+import pathlib
+import re
+import sys
+
+import h5py
+import numpy as np
+
+UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6}
+
+
+def length(text):
+    """A length with a unit ("0.5 mm", "4mm", "0.002 m"); a bare number is metres."""
+    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-z]*)\s*", text)
+    if not m or m.group(2) not in UNITS | {"": 1.0}:
+        raise ValueError(f"'{text}' is not a length (a number with m, mm or um)")
+    return float(m.group(1)) * UNITS.get(m.group(2), 1.0)
+
+
+def body_index(run, name):
+    bodies = json.loads((run / "run.json").read_text())["bodies"]
+    if name not in bodies:
+        raise ValueError(f"--body '{name}': the run's bodies are {', '.join(bodies)}")
+    return bodies.index(name)
+
+
+def groups(x0, by, axis, width, radius):
+    """Each point's group index (-1: in none) and the groups' column names."""
+    r = np.hypot(x0[:, 0] - axis[0], x0[:, 1] - axis[1])
+    if by == "radius":
+        n = int(round(radius / width))
+        index = np.floor(r / width).astype(int)
+        index[(index >= n) | (r >= radius)] = -1
+        names = [f"r_{i * width * 1e3:g}_{(i + 1) * width * 1e3:g}_mm" for i in range(n)]
+        return index, names
+    # Layers: the distinct starting z (to 1 nm), top first.
+    z = np.round(x0[:, 2], 9)
+    levels = np.unique(z)[::-1]
+    index = np.searchsorted(-levels, -z)
+    index[r >= radius] = -1
+    return index, [f"z_{level * 1e3:g}_mm" for level in levels]
+
+
+def history(run, body, by, axis, width, radius):
+    run = pathlib.Path(run)
+    snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
+    if not snapshots:
+        raise ValueError(f"{run}/snapshots: no particle snapshots")
+    b = body_index(run, body)
+    with h5py.File(snapshots[0], "r") as f:
+        mine = f["body"][:] == b
+        ids, x0 = f["id"][:][mine], f["position"][:][mine]
+    if ids.size == 0:
+        raise ValueError(f"{snapshots[0]}: body '{body}' has no points")
+    index, names = groups(x0, by, axis, width, radius)
+    order = np.argsort(ids)
+    ids, index = ids[order], index[order]
+    counts = np.bincount(index[index >= 0], minlength=len(names))
+    rows = []
+    for path in snapshots:
+        with h5py.File(path, "r") as f:
+            time = float(f.attrs["time"])
+            now = f["body"][:] == b
+            now_ids, failed = f["id"][:][now], f["failed"][:][now] > 0
+        # Intact points still in the model; every other point of the body counts as failed.
+        intact_ids = now_ids[~failed]
+        where = np.minimum(np.searchsorted(ids, intact_ids), ids.size - 1)
+        if np.any(ids[where] != intact_ids):
+            raise ValueError(f"{path}: body '{body}' has points the first snapshot does not")
+        intact = np.zeros(ids.size, dtype=bool)
+        intact[where] = True
+        lost = (~intact) & (index >= 0)
+        rows.append((time, np.bincount(index[lost], minlength=len(names)) / np.maximum(counts, 1)))
+    return names, counts, rows
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("run", help="run directory (hvi run --out)")
+    parser.add_argument("--body", required=True, help="body name as in run.json, e.g. panel.rear")
+    parser.add_argument("--by", default="radius", choices=["radius", "layer"], help="group by (default radius)")
+    parser.add_argument("--bin", default="0.5 mm", help='radial bin width (default "0.5 mm")')
+    parser.add_argument("--radius", help="outer radius of the groups (default: 8 bins)")
+    parser.add_argument("--axis", default="0 mm,0 mm", help='impact axis "X,Y" (default "0 mm,0 mm")')
+    args = parser.parse_args(argv)
+    try:
+        width = length(args.bin)
+        radius = length(args.radius) if args.radius else 8 * width
+        parts = args.axis.split(",")
+        if len(parts) != 2:
+            raise ValueError(f"--axis '{args.axis}': expected two lengths X,Y")
+        if not (width > 0 and radius > 0):
+            raise ValueError("--bin and --radius must be positive")
+        names, counts, rows = history(args.run, args.body, args.by, [length(p) for p in parts], width, radius)
+    except (OSError, KeyError, ValueError) as e:
+        print(f"failure_history.py: {e}", file=sys.stderr)
+        return 2
+    print(",".join(["time_s"] + names))
+    for t, fraction in rows:
+        print(",".join([f"{t:.9g}"] + [f"{v:.4f}" for v in fraction]))
+    print("points per group: " + ", ".join(f"{n} {c}" for n, c in zip(names, counts)), file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,100 @@
+"""scripts/failure_history.py on a synthetic run whose failures are known: a sheet of two point
+layers, points followed by id (reordered between snapshots, one removed, one eroded), another
+body's failures ignored. Every fraction is a ratio of small integers, checked exactly."""
+import contextlib
+import io
+import json
+import pathlib
+import sys
+import tempfile
+import unittest
+
+import h5py
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+import failure_history  # noqa: E402
+
+
+def write_snapshot(path, time, ids, body, position, failed):
+    with h5py.File(path, "w") as f:
+        f.attrs["time"] = time
+        f["id"], f["body"], f["position"], f["failed"] = ids, body, position, failed
+
+
+def make_run(root):
+    """Body 1 ('sheet'): points at x = 0.25, 0.75, 1.25, 1.75 mm on y = 0, in two layers
+    (z = 0 and z = -0.1 mm), ids 10..17 (top layer first). Body 0 ('projectile'): two points on the
+    axis, failed from the start. At 1 us the top layer's points at x = 0.25 and 0.75 mm have
+    failed (one of them eroded); at 2 us the bottom layer's point at x = 0.25 mm has left the
+    model too, and the snapshot lists the points in reverse order."""
+    run = root / "run"
+    (run / "snapshots").mkdir(parents=True)
+    (run / "run.json").write_text(json.dumps({"bodies": ["projectile", "sheet"]}))
+    xs = [0.25e-3, 0.75e-3, 1.25e-3, 1.75e-3]
+    sheet = np.array([[x, 0.0, z] for z in (0.0, -0.1e-3) for x in xs])
+    position = np.vstack([[[0.0, 0.0, 1e-3], [0.0, 0.0, 2e-3]], sheet])
+    ids = np.array([1, 2] + list(range(10, 18)))
+    body = np.array([0, 0] + [1] * 8)
+    failed = np.array([1.0, 1.0] + [0.0] * 8)
+    write_snapshot(run / "snapshots/particles_000000.h5", 0.0, ids, body, position, failed)
+    failed1 = failed.copy()
+    failed1[2], failed1[3] = 1.0, 2.0  # ids 10 (failed) and 11 (eroded)
+    write_snapshot(run / "snapshots/particles_000001.h5", 1e-6, ids, body, position, failed1)
+    keep = ids != 14  # the bottom layer's point at x = 0.25 mm has left the grid
+    write_snapshot(run / "snapshots/particles_000002.h5", 2e-6, ids[keep][::-1], body[keep][::-1],
+                   position[keep][::-1], failed1[keep][::-1])
+    return run
+
+
+def run_script(*argv):
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = failure_history.main(list(argv))
+    return code, out.getvalue().splitlines(), err.getvalue()
+
+
+class FailureHistory(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.run_dir = str(make_run(pathlib.Path(self.tmp.name)))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_by_radius(self):
+        code, lines, err = run_script(self.run_dir, "--body", "sheet", "--bin", "0.5 mm", "--radius", "2 mm")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(lines[0], "time_s,r_0_0.5_mm,r_0.5_1_mm,r_1_1.5_mm,r_1.5_2_mm")
+        # Two points per bin (one per layer).
+        self.assertIn("r_0_0.5_mm 2, r_0.5_1_mm 2, r_1_1.5_mm 2, r_1.5_2_mm 2", err)
+        self.assertEqual(lines[1], "0,0.0000,0.0000,0.0000,0.0000")
+        self.assertEqual(lines[2], "1e-06,0.5000,0.5000,0.0000,0.0000")
+        self.assertEqual(lines[3], "2e-06,1.0000,0.5000,0.0000,0.0000")
+
+    def test_by_layer_within_a_radius(self):
+        code, lines, err = run_script(self.run_dir, "--body", "sheet", "--by", "layer", "--radius", "1 mm")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(lines[0], "time_s,z_0_mm,z_-0.1_mm")  # top layer first
+        self.assertIn("z_0_mm 2, z_-0.1_mm 2", err)  # only the points within 1 mm
+        self.assertEqual(lines[2], "1e-06,1.0000,0.0000")
+        self.assertEqual(lines[3], "2e-06,1.0000,0.5000")
+
+    def test_an_axis_off_the_origin(self):
+        # Axis at x = 2 mm: the points at 1.75 and 1.25 mm fall in the first two bins, unfailed.
+        code, lines, _ = run_script(self.run_dir, "--body", "sheet", "--axis", "2 mm,0 mm", "--radius", "1 mm")
+        self.assertEqual(code, 0)
+        self.assertEqual(lines[3], "2e-06,0.0000,0.0000")
+
+    def test_bad_input_is_refused(self):
+        code, _, err = run_script(self.run_dir, "--body", "rear")
+        self.assertEqual(code, 2)
+        self.assertIn("--body 'rear': the run's bodies are projectile, sheet", err)
+        code, _, err = run_script(self.run_dir, "--body", "sheet", "--bin", "0.5 furlongs")
+        self.assertEqual(code, 2)
+        self.assertIn("is not a length", err)
+
+
+if __name__ == "__main__":
+    unittest.main()
