@@ -18,21 +18,12 @@ in mm); on standard error how many points each group holds.
 import argparse
 import json
 import pathlib
-import re
 import sys
 
 import h5py
 import numpy as np
 
-UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6}
-
-
-def length(text):
-    """A length with a unit ("0.5 mm", "4mm", "0.002 m"); a bare number is metres."""
-    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-z]*)\s*", text)
-    if not m or m.group(2) not in UNITS | {"": 1.0}:
-        raise ValueError(f"'{text}' is not a length (a number with m, mm or um)")
-    return float(m.group(1)) * UNITS.get(m.group(2), 1.0)
+from probe_history import length  # a length with a unit, "0.5 mm"
 
 
 def body_index(run, name):
