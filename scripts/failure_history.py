@@ -1,19 +1,26 @@
 #!/usr/bin/env python3
 """Where and when a body failed, read from a run's snapshots: the fraction of its points failed,
-grouped by where each point started, at every snapshot time.
+or the median of a field over its intact points, grouped by where each point started, at every
+snapshot time.
 
-  failure_history.py RUN --body NAME [--by radius|layer] [--bin "0.5 mm"] [--radius "4 mm"]
-                         [--axis "X,Y"]
+  failure_history.py RUN --body NAME [--by radius|layer|height] [--bin "0.5 mm"] [--radius "4 mm"]
+                         [--axis "X,Y"] [--quantity failed|outward|velocity_z|volume_ratio|pressure|principal]
 
 Each of the body's points is followed by id from the first snapshot and put in a group:
   --by radius (default): by its distance from the impact axis (parallel to z through --axis,
     default "0 mm,0 mm") in bins of --bin, out to --radius (default 8 bins);
   --by layer: by the z it started at (one column per point layer of a facesheet, top first),
-    counting only points that started within --radius of the axis.
-A point counts as failed at a snapshot if its `failed` field is non-zero there (failed or
-eroded) or if it is no longer in the model (it left the grid). Output: CSV on standard output,
-one row per snapshot (time in s, then one fraction per group, its column named after the group
-in mm); on standard error how many points each group holds.
+    counting only points that started within --radius of the axis;
+  --by height: by the z it started at in bins of --bin from the body's top down (a core's walls
+    along the impact axis), counting only points that started within --radius of the axis.
+--quantity failed (default): the fraction of the group's points failed: a point counts as
+failed at a snapshot if its `failed` field is non-zero there (failed or eroded) or if it is no
+longer in the model (it left the grid). Any other quantity is the median over the group's intact
+points (NaN when none is left): outward, how far a point has moved away from the axis since the
+first snapshot (m); velocity_z (m/s); volume_ratio V/V0; pressure (Pa, compression positive);
+principal, the largest principal Cauchy stress (Pa, tension positive). Output: CSV on standard
+output, one row per snapshot (time in s, then one value per group, its column named after the
+group in mm); on standard error how many points each group holds.
 """
 import argparse
 import json
@@ -42,6 +49,14 @@ def groups(x0, by, axis, width, radius):
         index[(index >= n) | (r >= radius)] = -1
         names = [f"r_{i * width * 1e3:g}_{(i + 1) * width * 1e3:g}_mm" for i in range(n)]
         return index, names
+    if by == "height":
+        top = x0[:, 2].max()
+        depth = top - x0[:, 2]
+        n = int(np.floor(depth.max() / width)) + 1
+        index = np.minimum(np.floor(depth / width).astype(int), n - 1)
+        index[r >= radius] = -1
+        names = [f"z_{(top - i * width) * 1e3:.4g}_{(top - (i + 1) * width) * 1e3:.4g}_mm" for i in range(n)]
+        return index, names
     # Layers: the distinct starting z (to 1 nm), top first.
     z = np.round(x0[:, 2], 9)
     levels = np.unique(z)[::-1]
@@ -50,7 +65,27 @@ def groups(x0, by, axis, width, radius):
     return index, [f"z_{level * 1e3:g}_mm" for level in levels]
 
 
-def history(run, body, by, axis, width, radius):
+def largest_principal(stress):
+    """The largest eigenvalue of each Cauchy stress, stored as xx xy xz yy yz zz."""
+    m = np.empty((len(stress), 3, 3))
+    for k, (i, j) in enumerate([(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)]):
+        m[:, i, j] = m[:, j, i] = stress[:, k]
+    return np.linalg.eigvalsh(m)[:, -1]
+
+
+def field(f, now, quantity, axis):
+    """The per-point value of a median quantity for the body's points in a snapshot."""
+    if quantity == "outward":
+        x = f["position"][:][now]
+        return np.hypot(x[:, 0] - axis[0], x[:, 1] - axis[1])  # r0 is subtracted by the caller
+    if quantity == "velocity_z":
+        return f["velocity"][:][now][:, 2]
+    if quantity == "principal":
+        return largest_principal(f["stress"][:][now])
+    return f[quantity][:][now]
+
+
+def history(run, body, by, axis, width, radius, quantity="failed"):
     run = pathlib.Path(run)
     snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
     if not snapshots:
@@ -63,7 +98,8 @@ def history(run, body, by, axis, width, radius):
         raise ValueError(f"{snapshots[0]}: body '{body}' has no points")
     index, names = groups(x0, by, axis, width, radius)
     order = np.argsort(ids)
-    ids, index = ids[order], index[order]
+    ids, index, x0 = ids[order], index[order], x0[order]
+    r0 = np.hypot(x0[:, 0] - axis[0], x0[:, 1] - axis[1])
     counts = np.bincount(index[index >= 0], minlength=len(names))
     rows = []
     for path in snapshots:
@@ -71,15 +107,23 @@ def history(run, body, by, axis, width, radius):
             time = float(f.attrs["time"])
             now = f["body"][:] == b
             now_ids, failed = f["id"][:][now], f["failed"][:][now] > 0
+            values = None if quantity == "failed" else field(f, now, quantity, axis)[~failed]
         # Intact points still in the model; every other point of the body counts as failed.
         intact_ids = now_ids[~failed]
         where = np.minimum(np.searchsorted(ids, intact_ids), ids.size - 1)
         if np.any(ids[where] != intact_ids):
             raise ValueError(f"{path}: body '{body}' has points the first snapshot does not")
-        intact = np.zeros(ids.size, dtype=bool)
-        intact[where] = True
-        lost = (~intact) & (index >= 0)
-        rows.append((time, np.bincount(index[lost], minlength=len(names)) / np.maximum(counts, 1)))
+        if quantity == "failed":
+            intact = np.zeros(ids.size, dtype=bool)
+            intact[where] = True
+            lost = (~intact) & (index >= 0)
+            rows.append((time, np.bincount(index[lost], minlength=len(names)) / np.maximum(counts, 1)))
+            continue
+        if quantity == "outward":
+            values = values - r0[where]
+        group = index[where]
+        rows.append((time, np.array([np.median(values[group == g]) if np.any(group == g) else np.nan
+                                     for g in range(len(names))])))
     return names, counts, rows
 
 
@@ -87,8 +131,12 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("run", help="run directory (hvi run --out)")
     parser.add_argument("--body", required=True, help="body name as in run.json, e.g. panel.rear")
-    parser.add_argument("--by", default="radius", choices=["radius", "layer"], help="group by (default radius)")
-    parser.add_argument("--bin", default="0.5 mm", help='radial bin width (default "0.5 mm")')
+    parser.add_argument("--by", default="radius", choices=["radius", "layer", "height"],
+                        help="group by (default radius)")
+    parser.add_argument("--bin", default="0.5 mm", help='radial or height bin width (default "0.5 mm")')
+    parser.add_argument("--quantity", default="failed",
+                        choices=["failed", "outward", "velocity_z", "volume_ratio", "pressure", "principal"],
+                        help="fraction failed (default) or the median of a field over intact points")
     parser.add_argument("--radius", help="outer radius of the groups (default: 8 bins)")
     parser.add_argument("--axis", default="0 mm,0 mm", help='impact axis "X,Y" (default "0 mm,0 mm")')
     args = parser.parse_args(argv)
@@ -100,13 +148,14 @@ def main(argv=None):
             raise ValueError(f"--axis '{args.axis}': expected two lengths X,Y")
         if not (width > 0 and radius > 0):
             raise ValueError("--bin and --radius must be positive")
-        names, counts, rows = history(args.run, args.body, args.by, [length(p) for p in parts], width, radius)
+        names, counts, rows = history(args.run, args.body, args.by, [length(p) for p in parts], width, radius,
+                                      args.quantity)
     except (OSError, KeyError, ValueError) as e:
         print(f"failure_history.py: {e}", file=sys.stderr)
         return 2
     print(",".join(["time_s"] + names))
     for t, fraction in rows:
-        print(",".join([f"{t:.9g}"] + [f"{v:.4f}" for v in fraction]))
+        print(",".join([f"{t:.9g}"] + [f"{v:.4f}" if args.quantity == "failed" else f"{v:.6g}" for v in fraction]))
     print("points per group: " + ", ".join(f"{n} {c}" for n, c in zip(names, counts)), file=sys.stderr)
     return 0
 

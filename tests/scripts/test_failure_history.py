@@ -18,9 +18,19 @@ import failure_history  # noqa: E402
 
 
 def write_snapshot(path, time, ids, body, position, failed):
+    """Besides the given fields, each point's state is set by its id: velocity_z = -id m/s,
+    volume_ratio = 1 + id / 1000, pressure = id MPa, and a stress of that pressure plus an xy shear
+    of 2 MPa, so its largest principal stress is (2 - id) MPa."""
     with h5py.File(path, "w") as f:
         f.attrs["time"] = time
         f["id"], f["body"], f["position"], f["failed"] = ids, body, position, failed
+        f["velocity"] = np.stack([np.zeros(ids.size), np.zeros(ids.size), -ids.astype(float)], axis=1)
+        f["volume_ratio"] = 1.0 + ids / 1000.0
+        f["pressure"] = ids * 1e6
+        stress = np.zeros((ids.size, 6))  # xx xy xz yy yz zz
+        stress[:, 0] = stress[:, 3] = stress[:, 5] = -ids * 1e6
+        stress[:, 1] = 2e6
+        f["stress"] = stress
 
 
 def make_run(root):
@@ -28,7 +38,8 @@ def make_run(root):
     (z = 0 and z = -0.1 mm), ids 10..17 (top layer first). Body 0 ('projectile'): two points on the
     axis, failed from the start. At 1 us the top layer's points at x = 0.25 and 0.75 mm have
     failed (one of them eroded); at 2 us the bottom layer's point at x = 0.25 mm has left the
-    model too, and the snapshot lists the points in reverse order."""
+    model too, and the snapshot lists the points in reverse order. From 1 us on each sheet point
+    has moved (id - 9) * 0.01 mm along +x, away from the axis."""
     run = root / "run"
     (run / "snapshots").mkdir(parents=True)
     (run / "run.json").write_text(json.dumps({"bodies": ["projectile", "sheet"]}))
@@ -41,6 +52,8 @@ def make_run(root):
     write_snapshot(run / "snapshots/particles_000000.h5", 0.0, ids, body, position, failed)
     failed1 = failed.copy()
     failed1[2], failed1[3] = 1.0, 2.0  # ids 10 (failed) and 11 (eroded)
+    position = position.copy()
+    position[2:, 0] += (ids[2:] - 9) * 1e-5
     write_snapshot(run / "snapshots/particles_000001.h5", 1e-6, ids, body, position, failed1)
     keep = ids != 14  # the bottom layer's point at x = 0.25 mm has left the grid
     write_snapshot(run / "snapshots/particles_000002.h5", 2e-6, ids[keep][::-1], body[keep][::-1],
@@ -80,6 +93,33 @@ class FailureHistory(unittest.TestCase):
         self.assertIn("z_0_mm 2, z_-0.1_mm 2", err)  # only the points within 1 mm
         self.assertEqual(lines[2], "1e-06,1.0000,0.0000")
         self.assertEqual(lines[3], "2e-06,1.0000,0.5000")
+
+    def test_by_height_bins(self):
+        # Bins of 0.1 mm from the sheet's top: the same two groups as its two point layers.
+        code, lines, err = run_script(self.run_dir, "--body", "sheet", "--by", "height", "--bin", "0.1 mm",
+                                      "--radius", "1 mm")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(lines[0], "time_s,z_0_-0.1_mm,z_-0.1_-0.2_mm")
+        self.assertIn("z_0_-0.1_mm 2, z_-0.1_-0.2_mm 2", err)
+        self.assertEqual(lines[3], "2e-06,1.0000,0.5000")
+
+    def test_medians_over_intact_points(self):
+        # At 1 us the bins' intact points are ids 14 | 15 | 12, 16 | 13, 17; at 2 us id 14 is gone.
+        def rows(quantity):
+            code, lines, err = run_script(self.run_dir, "--body", "sheet", "--bin", "0.5 mm", "--radius", "2 mm",
+                                          "--quantity", quantity)
+            self.assertEqual(code, 0, err)
+            return [[float(v) for v in line.split(",")[1:]] for line in lines[1:]]
+        outward = rows("outward")
+        self.assertEqual(outward[0], [0.0, 0.0, 0.0, 0.0])
+        for got, want in zip(outward[1], [5e-5, 6e-5, 5e-5, 6e-5]):
+            self.assertAlmostEqual(got, want, delta=1e-12)
+        self.assertTrue(np.isnan(outward[2][0]))  # no intact point left in the first bin
+        self.assertEqual(rows("velocity_z")[1], [-14.0, -15.0, -14.0, -15.0])
+        self.assertEqual(rows("volume_ratio")[1], [1.014, 1.015, 1.014, 1.015])
+        self.assertEqual(rows("pressure")[1], [14e6, 15e6, 14e6, 15e6])
+        for got, want in zip(rows("principal")[1], [-12e6, -13e6, -12e6, -13e6]):
+            self.assertAlmostEqual(got, want, delta=1e-6)
 
     def test_an_axis_off_the_origin(self):
         # Axis at x = 2 mm: the points at 1.75 and 1.25 mm fall in the first two bins, unfailed.
