@@ -52,6 +52,13 @@ std::vector<std::string> strings(const toml::node* node) {
   return out;
 }
 
+// The key.path of a key.path=value override, without surrounding blanks.
+std::string override_key(const std::string& assignment) {
+  const std::string key = assignment.substr(0, assignment.find('='));
+  const auto first = key.find_first_not_of(" \t"), last = key.find_last_not_of(" \t");
+  return first == std::string::npos ? std::string() : key.substr(first, last - first + 1);
+}
+
 bool valid_name(const std::string& name) {
   if (name.empty() || name == "." || name == "..") return false;
   for (const char c : name)
@@ -166,9 +173,11 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
   Study study;
   study.title = r["title"].value<std::string>().value();
   study.scene = (fs::path(path).parent_path() / r["scene"].value<std::string>().value()).lexically_normal().string();
-  std::vector<std::string> common = strings(r.get("set"));
-  common.insert(common.end(), overrides.begin(), overrides.end());
+  // Precedence, the later one winning: the study's own `set`, the run's (its levels' or its
+  // [[run]]'s), then the command line's, as for `hvi run` (a scene's file, then --set).
+  const std::vector<std::string> common = strings(r.get("set"));
   std::vector<Diagnostic> errors;
+  std::set<std::string> axis_keys;  // what some axis varies: the command line must not fix it
 
   // The product of the axes (the first axis varies slowest).
   std::vector<SweepRun> product;
@@ -189,7 +198,10 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
           SweepRun run = partial;
           run.name += (run.name.empty() ? "" : "_") + label;
           run.labels.emplace_back(axis_name, label);
-          for (const auto& s : strings(level.get("set"))) run.overrides.push_back(s);
+          for (const auto& s : strings(level.get("set"))) {
+            run.overrides.push_back(s);
+            axis_keys.insert(override_key(s));
+          }
           next.push_back(std::move(run));
         }
       }
@@ -213,8 +225,14 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
     if (!seen.insert(run.name).second) errors.push_back(v.at("run", fmt::format("two runs are named '{}'", run.name)));
     std::vector<std::string> all = common;
     all.insert(all.end(), run.overrides.begin(), run.overrides.end());
+    all.insert(all.end(), overrides.begin(), overrides.end());
     run.overrides = std::move(all);
   }
+  for (const auto& s : overrides)
+    if (axis_keys.count(override_key(s)))
+      errors.push_back(Diagnostic{"--set", 0, 0, override_key(s), s.substr(s.find('=') + 1),
+                                  "an axis of this study varies this key; fixing it on the command line would make "
+                                  "its levels the same run (select runs with --only instead)"});
   if (!errors.empty()) throw SceneError(errors);
   return study;
 }

@@ -3,6 +3,7 @@
 // level stops the sweep before anything runs.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -64,13 +65,39 @@ TEST(Sweep, StudyExpandsToTheProductOfItsAxesAndItsRuns) {
   EXPECT_EQ(s.runs[1].name, "v100_r15");
   EXPECT_EQ(s.runs[3].name, "v200_r15");
   EXPECT_EQ(s.runs[4].name, "still");
-  // The study's overrides, the command line's, then the level's (the later one wins).
-  const std::vector<std::string> expected{"run.end_time=2 us", "grid.cell_size=1 mm", "body.ball.velocity=[200, 0, 0]",
-                                          "body.ball.sphere.radius=1.5 mm"};
+  // The study's overrides, the level's, then the command line's (the later one wins).
+  const std::vector<std::string> expected{"run.end_time=2 us", "body.ball.velocity=[200, 0, 0]",
+                                          "body.ball.sphere.radius=1.5 mm", "grid.cell_size=1 mm"};
   EXPECT_EQ(s.runs[3].overrides, expected);
   EXPECT_EQ(s.runs[3].labels.size(), 2u);
   EXPECT_EQ(s.runs[3].labels[1].first, "size");
   EXPECT_EQ(s.runs[3].labels[1].second, "r15");
+}
+
+TEST(Sweep, TheCommandLineOverridesARunsOwnSetButMayNotFixAnAxis) {
+  // A [[run]]'s own value gives way to the command line's: the paper's study, whose runs each set
+  // their model area, cut to a quarter model.
+  const std::string quarter = R"(grid.lower=["0 mm", "0 mm", "-25 mm"])";
+  const hvi::driver::Study s =
+      hvi::driver::load_study(std::string(HVI_SOURCE_DIR) + "/cases/paper/study/study.toml", {quarter});
+  ASSERT_EQ(s.runs.size(), 25u);
+  for (const auto& run : s.runs) {
+    ASSERT_FALSE(run.overrides.empty());
+    EXPECT_EQ(run.overrides.back(), quarter) << run.name;
+    EXPECT_NE(std::find_if(run.overrides.begin(), run.overrides.end(),
+                           [](const std::string& o) { return o.starts_with("grid.lower="); }),
+              run.overrides.end() - 1)
+        << run.name << " sets its own grid.lower, which the command line's follows";
+  }
+  // ...but fixing what an axis varies would make its levels one run: an error naming the key.
+  try {
+    hvi::driver::load_study(data + "drift_study.toml", {" body.ball.sphere.radius =2 mm"});
+    FAIL() << "an override of an axis's key was accepted";
+  } catch (const hvi::scene::SceneError& e) {
+    ASSERT_EQ(e.diagnostics().size(), 1u);
+    EXPECT_EQ(e.diagnostics()[0].key, "body.ball.sphere.radius");
+    EXPECT_EQ(e.diagnostics()[0].file, "--set");
+  }
 }
 
 TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
