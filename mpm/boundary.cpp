@@ -37,4 +37,29 @@ void apply_grid_conditions(SparseGrid& grid, const std::vector<GridBoundary>& co
   }
 }
 
+std::size_t reflect_at_symmetry_planes(Particles& particles, const GridGeometry& geometry,
+                                       const std::vector<GridBoundary>& conditions) {
+  std::size_t reflected = 0;
+  const auto n = static_cast<std::int64_t>(particles.size());
+  for (const auto& c : conditions) {
+    if (c.type != BoundaryType::symmetry) continue;
+    const int d = c.axis;
+    const double plane = geometry.origin[d] + c.plane * geometry.cell_size;
+    const double side = c.outside_below ? 1.0 : -1.0;  // + where the material is
+    double* x = particles.position.data();
+    double* v = particles.velocity.data();
+    double* vg = particles.grid_velocity.data();
+#pragma omp parallel for schedule(static) reduction(+ : reflected)
+    for (std::int64_t p = 0; p < n; ++p) {
+      const double depth = side * (plane - x[3 * p + d]);  // > 0: beyond the plane
+      if (!(depth > 0.0)) continue;
+      x[3 * p + d] = plane + side * depth;
+      v[3 * p + d] = -v[3 * p + d];
+      vg[3 * p + d] = -vg[3 * p + d];
+      ++reflected;
+    }
+  }
+  return reflected;
+}
+
 }  // namespace hvi::mpm

@@ -5,9 +5,11 @@
 //   fixed:    all three components (a rigid, sticking wall)
 //   symmetry: the normal component only (a frictionless roller; a mirror plane of the model)
 // A side with no condition is free: nothing is imposed.
+#include <cstddef>
 #include <vector>
 
 #include "mpm/grid.hpp"
+#include "mpm/particles.hpp"
 
 namespace hvi::mpm {
 
@@ -23,5 +25,17 @@ struct GridBoundary {
 // Zeroes the constrained components of the nodal vectors (p, f, q) of every active node the
 // conditions cover. Valid in every phase of the step, whatever the vectors hold then.
 void apply_grid_conditions(SparseGrid& grid, const std::vector<GridBoundary>& conditions);
+
+// After the position update: a point that has crossed a symmetry plane is replaced by its mirror
+// image, the point the mirrored half of the model sends back across the plane,
+//   x_n <- 2 x_s - x_n,   v_n <- -v_n   (for the particle and the grid velocity),
+// x_s the plane's coordinate, n its axis. Only points on or within a cell of the plane can cross:
+// with cpGIMP a point lying on the plane feels the interior node's normal velocity through its
+// domain, though the plane's own nodes are held at v_n = 0. The reflection keeps mass and kinetic
+// energy; the point's tensors are not mirrored (it is within a fraction of a cell of the plane,
+// where symmetry makes the normal shear stresses vanish). Fixed walls are left alone. Returns the
+// number of points reflected.
+std::size_t reflect_at_symmetry_planes(Particles& particles, const GridGeometry& geometry,
+                                       const std::vector<GridBoundary>& conditions);
 
 }  // namespace hvi::mpm

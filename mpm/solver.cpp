@@ -155,6 +155,7 @@ void Solver::step(double max_dt) {
       break;
   }
   update_positions();
+  reflect_at_symmetry_planes();
   state_.time += dt_;
   state_.step += 1;
   remove_escaped_particles();
@@ -291,6 +292,14 @@ void Solver::update_positions() {
   const double dt = dt_;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < 3 * n; ++i) x[i] += dt * vg[i];
+}
+
+void Solver::reflect_at_symmetry_planes() {
+  if (std::none_of(boundaries_.begin(), boundaries_.end(),
+                   [](const GridBoundary& c) { return c.type == BoundaryType::symmetry; }))
+    return;
+  auto t = timer_.scope("reflect at symmetry planes");
+  mpm::reflect_at_symmetry_planes(particles_, geometry_, boundaries_);
 }
 
 void Solver::remove_escaped_particles() {

@@ -159,6 +159,7 @@ class Solver {
   void stretch_particle_domains();
   void update_stress();
   void update_positions();
+  void reflect_at_symmetry_planes();
   void remove_escaped_particles();
   void choose_time_step();
 

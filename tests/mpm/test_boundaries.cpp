@@ -1,7 +1,8 @@
 // Essential boundary conditions on grid planes (mpm/boundary.hpp): a block thrown at a fixed wall
 // or a symmetry plane is stopped by it (constrained nodal velocity components exactly zero at
 // and behind the plane, no particle through it) and bounces back; a block sliding along a
-// symmetry plane keeps its tangential momentum, along a fixed wall it does not.
+// symmetry plane keeps its tangential momentum, along a fixed wall it does not; a point that
+// crosses a symmetry plane is reflected back, never lost.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -175,6 +176,97 @@ TEST(Boundaries, FixedPlaneStopsTangentialVelocity) {
     const SlideResult r = slide(BoundaryType::fixed, shape);
     EXPECT_GT(r.momentum_change, 0.05);
   }
+}
+
+// The reflection itself, in closed form: a point a distance d beyond a symmetry plane at x_s comes
+// back to x_s + d (material above) or x_s - d (material below) with its normal particle and grid
+// velocity reversed and its other components unchanged; a point on the plane, on the material's
+// side, or beyond a fixed wall is not touched. Exact up to the one rounding of 2 x_s - x.
+TEST(Boundaries, APointBeyondASymmetryPlaneIsReflectedBack) {
+  const double h = 1e-3, d = 1e-7;
+  const GridGeometry g = grid({-2 * h, 0, 0}, h, {8, 8, 8});
+  const std::vector<GridBoundary> conditions{{0, 2, true, BoundaryType::symmetry},    // x = 0
+                                             {2, 6, false, BoundaryType::symmetry},   // z = 6h
+                                             {1, 1, true, BoundaryType::fixed}};      // y = h
+  Particles P;
+  P.resize(5);
+  const double x[5][3] = {{-d, 3 * h, 3 * h},         // beyond x = 0
+                          {0.0, 3 * h, 3 * h},        // on it
+                          {2 * h, 3 * h, 6 * h + d},  // beyond z = 6h (material below)
+                          {2 * h, h - d, 3 * h},      // beyond the fixed wall
+                          {h, 4 * h, 4 * h}};         // inside
+  for (int p = 0; p < 5; ++p)
+    for (int k = 0; k < 3; ++k) {
+      P.position[3 * p + k] = x[p][k];
+      P.velocity[3 * p + k] = 100.0 * (k + 1) * (k == 0 || k == 2 ? -1.0 : 1.0);
+      P.grid_velocity[3 * p + k] = 0.5 * P.velocity[3 * p + k];
+    }
+  P.velocity[3 * 2 + 2] = 300.0;  // toward +z, out through the upper plane
+  P.grid_velocity[3 * 2 + 2] = 150.0;
+  const std::vector<double> x0 = P.position, v0 = P.velocity, vg0 = P.grid_velocity;
+  EXPECT_EQ(reflect_at_symmetry_planes(P, g, conditions), 2u);
+  EXPECT_NEAR(P.position[0], d, 1e-19);
+  EXPECT_EQ(P.velocity[0], 100.0);
+  EXPECT_EQ(P.grid_velocity[0], 50.0);
+  EXPECT_NEAR(P.position[3 * 2 + 2], 6 * h - d, 1e-18);
+  EXPECT_EQ(P.velocity[3 * 2 + 2], -300.0);
+  EXPECT_EQ(P.grid_velocity[3 * 2 + 2], -150.0);
+  for (int p = 0; p < 5; ++p)
+    for (int k = 0; k < 3; ++k) {
+      if ((p == 0 && k == 0) || (p == 2 && k == 2)) continue;
+      EXPECT_EQ(P.position[3 * p + k], x0[3 * p + k]) << p << " " << k;
+      EXPECT_EQ(P.velocity[3 * p + k], v0[3 * p + k]) << p << " " << k;
+      EXPECT_EQ(P.grid_velocity[3 * p + k], vg0[3 * p + k]) << p << " " << k;
+    }
+}
+
+// Points lying on a symmetry plane at the grid's lower face (a wall cut by the plane of a half or
+// quarter model keeps half its thickness there). With cpGIMP such a point's domain reaches the
+// first interior node, so the grid moves it though the plane's nodes hold v_n = 0: in the
+// study's quarter models a few dozen core-wall points drifted to x ~ -1e-7 m and were removed as
+// leaving the grid. Here a cpGIMP aluminium block whose first layer lies on x = 0 is thrown at the
+// plane at 500 m/s for 120 steps: the layer must stay in the model (nothing removed, no point
+// beyond the plane) and the block's energy with it.
+// Measured with the reflection switched off: all 64 points of the on-plane layer left the grid
+// (1/8 of the block's mass).
+TEST(Boundaries, PointsOnASymmetryPlaneAreNotLostThroughIt) {
+  const Threads threads(1);
+  const double h = 1e-3, v = 500.0;
+  SolverSettings settings;
+  settings.shape = ShapeFunction::cpgimp;
+  Solver solver(grid({0, 0, 0}, h, {12, 8, 8}), settings,
+                one_material(std::make_unique<LinearElastic>("aluminium", 2700.0, 70e9, 0.33)),
+                {"block"}, {{0, 0, true, BoundaryType::symmetry}});
+  const std::size_t n = add_body(solver, geometry::Box({0, 2 * h, 2 * h}, {4 * h, 6 * h, 6 * h}),
+                                 2, 0, 0, uniform({-v, 0, 0}));
+  Particles& P = solver.particles();
+  std::size_t on_plane = 0;
+  for (std::size_t p = 0; p < n; ++p) {  // lattice at h/4, 3h/4, ...: shift the first layer onto x = 0
+    P.position[3 * p] -= 0.25 * h;
+    if (P.position[3 * p] == 0.0) ++on_plane;
+  }
+  ASSERT_EQ(on_plane, 64u);
+  solver.initialise();
+  const double mass = solver.energy().mass, energy0 = solver.energy().total();
+  double beyond = 0.0, energy_swing = 0.0;
+  for (int k = 0; k < 120; ++k) {
+    solver.step();
+    for (std::size_t p = 0; p < P.size(); ++p) beyond = std::max(beyond, -P.position[3 * p]);
+    energy_swing = std::max(energy_swing, std::fabs(solver.energy().total() / energy0 - 1.0));
+  }
+  const EnergyReport e = solver.energy();
+  std::printf("[on-plane layer, cpgimp] removed %lld points, max depth beyond the plane %.3g m, "
+              "max |E/E0 - 1| %.3f\n",
+              static_cast<long long>(solver.removed().particles), beyond, energy_swing);
+  EXPECT_EQ(solver.removed().particles, 0);
+  EXPECT_EQ(P.size(), n);
+  EXPECT_EQ(e.mass, mass);
+  EXPECT_EQ(beyond, 0.0);  // reflected within the step it crossed
+  // The reflection adds no energy (it keeps each point's kinetic energy): the total moves only by
+  // the ringing of a block held at the plane by the nodes there (v_n = 0, the single-field picture
+  // of a block stuck to its mirror image; it vibrates against the plane rather than rebounding).
+  // Measured max |E/E0 - 1| = 0.065 over the 120 steps; bound 0.10.
+  EXPECT_LT(energy_swing, 0.10);
 }
 
 }  // namespace
