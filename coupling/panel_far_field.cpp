@@ -64,13 +64,20 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   fem::Orthotropic core_moduli = fem::honeycomb_core(spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio,
                                                      panel.cell_diameter, panel.wall_thickness, panel.double_walls);
   if (ribbon_along_x) std::swap(core_moduli.G13, core_moduli.G23);
+  std::optional<fem::CoreYield> core_yield;
+  if (spec.yielding_core) {
+    if (!spec.core_wall.hardening)
+      throw std::invalid_argument("far field: a yielding core needs its walls' yield stress (hardening)");
+    core_yield = fem::honeycomb_core_yield(core_moduli, spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio,
+                                           spec.core_wall.hardening->A);
+  }
   m.layers = {
       {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density,
-       spec.rear.hardening},
+       spec.rear.hardening, std::nullopt},
       {"core", core.lower[2], core.upper[2], spec.core_elements, core_moduli, spec.core_wall.density * solidity,
-       std::nullopt},
+       std::nullopt, core_yield},
       {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density,
-       spec.front.hardening}};
+       spec.front.hardening, std::nullopt}};
   return m;
 }
 

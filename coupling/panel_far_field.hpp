@@ -19,7 +19,9 @@ namespace hvi::coupling {
 
 struct SolidMaterial {
   double youngs_modulus = 0, poisson_ratio = 0, density = 0;
-  std::optional<mpm::JohnsonCookStrength> hardening;  // J2 plasticity (facesheets); none: elastic
+  // J2 plasticity (facesheets), or for the core's walls the yield stress of a yielding core (its
+  // A); none: elastic.
+  std::optional<mpm::JohnsonCookStrength> hardening;
 };
 
 struct PanelFarFieldSpec {
@@ -31,9 +33,13 @@ struct PanelFarFieldSpec {
   int core_elements = 8;         // through the core height
   int face_elements = 1;         // through each facesheet
   bool finite_strain = false;    // Green-Lagrange kinematics (fem/far_field.hpp); false: small strain
+  // The core's out-of-plane stresses capped where its walls yield (fem/core_yield.hpp, sigma_ys
+  // = core_wall.hardening's A); false: the core stays elastic.
+  bool yielding_core = false;
 };
 
-// Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, or the
+// Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, a
+// yielding core's walls have no hardening (yield stress), or the
 // panel has double walls and its cell pattern is not turned by a multiple of 90 degrees (the
 // core's orthotropic axes must be the panel's).
 fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,

@@ -136,7 +136,11 @@ struct FarField::Impl {
   bool any_plastic() const { return !plastic.empty(); }
   bool lane_is_plastic(unsigned cell, unsigned lane) const {
     const int l = lane_layer[W * cell + lane];
-    return l >= 0 && spec.layers[l].plasticity.has_value();
+    return l >= 0 && (spec.layers[l].plasticity || spec.layers[l].core_yield);
+  }
+  const Layer* lane_layer_spec(unsigned cell, unsigned lane) const {
+    const int l = lane_layer[W * cell + lane];
+    return l >= 0 ? &spec.layers[l] : nullptr;
   }
   double* state(unsigned cell, unsigned q, unsigned lane) {
     return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
@@ -181,22 +185,35 @@ struct FarField::Impl {
     for (unsigned lane = 0; lane < W; ++lane) {
       if (!lane_is_plastic(cell, lane)) continue;
       double* st = state(cell, q, lane);
-      J2State old;
-      std::copy(st, st + 6, old.plastic_strain.begin());
-      old.alpha = st[6];
       const Sym trial{sigma[0][0][lane], sigma[1][1][lane], sigma[2][2][lane],
                       sigma[1][2][lane], sigma[0][2][lane], sigma[0][1][lane]};
-      // C[8] = C66 = mu of the isotropic layer.
-      const J2Update r = j2_return(trial, old, C[8][lane], *spec.layers[lane_layer[W * cell + lane]].plasticity);
-      sigma[0][0][lane] = r.stress[0];
-      sigma[1][1][lane] = r.stress[1];
-      sigma[2][2][lane] = r.stress[2];
-      sigma[1][2][lane] = sigma[2][1][lane] = r.stress[3];
-      sigma[0][2][lane] = sigma[2][0][lane] = r.stress[4];
-      sigma[0][1][lane] = sigma[1][0][lane] = r.stress[5];
-      std::copy(r.state.plastic_strain.begin(), r.state.plastic_strain.end(), st);
-      st[6] = r.state.alpha;
-      batch_sum[cell] += r.plastic_work * jxw[lane];
+      const Layer& L = *lane_layer_spec(cell, lane);
+      Sym stress, plastic_strain;
+      double accumulated, work;
+      if (L.core_yield) {
+        std::array<double, 9> Cl;
+        for (int k = 0; k < 9; ++k) Cl[k] = C[k][lane];
+        Sym old;
+        std::copy(st, st + 6, old.begin());
+        const CoreYieldUpdate r = core_yield_return(trial, old, st[6], Cl, *L.core_yield);
+        stress = r.stress, plastic_strain = r.plastic_strain, accumulated = r.accumulated, work = r.plastic_work;
+      } else {
+        J2State old;
+        std::copy(st, st + 6, old.plastic_strain.begin());
+        old.alpha = st[6];
+        // C[8] = C66 = mu of the isotropic layer.
+        const J2Update r = j2_return(trial, old, C[8][lane], *L.plasticity);
+        stress = r.stress, plastic_strain = r.state.plastic_strain, accumulated = r.state.alpha, work = r.plastic_work;
+      }
+      sigma[0][0][lane] = stress[0];
+      sigma[1][1][lane] = stress[1];
+      sigma[2][2][lane] = stress[2];
+      sigma[1][2][lane] = sigma[2][1][lane] = stress[3];
+      sigma[0][2][lane] = sigma[2][0][lane] = stress[4];
+      sigma[0][1][lane] = sigma[1][0][lane] = stress[5];
+      std::copy(plastic_strain.begin(), plastic_strain.end(), st);
+      st[6] = accumulated;
+      batch_sum[cell] += work * jxw[lane];
     }
   }
 
@@ -383,6 +400,8 @@ void FarField::Impl::build_mesh() {
                            near(C[6], C[8]) && near(C[7], C[8]) && near(2.0 * C[8], C[0] - C[3]);
     if (L.plasticity && !isotropic)
       throw std::invalid_argument("far field: layer '" + L.name + "' is plastic but not isotropic (J2 needs an isotropic layer)");
+    if (L.plasticity && L.core_yield)
+      throw std::invalid_argument("far field: layer '" + L.name + "' names both J2 plasticity and core yield");
   }
   Table<dim, types::material_id> ids(spec.x_steps.size(), spec.y_steps.size(), z_steps.size());
   double x = spec.lower[0];
@@ -665,12 +684,24 @@ double FarField::plastic_work() const { return impl_->plastic_work; }
 bool FarField::plastic() const { return impl_->any_plastic(); }
 bool FarField::finite_strain() const { return impl_->spec.finite_strain; }
 
-double FarField::max_equivalent_plastic_strain() const {
+namespace {
+// The largest accumulated plastic strain (state slot 6) over the quadrature points of the plastic
+// lanes whose layer `core` is or is not a yielding core.
+template <class Impl>
+double max_accumulated(const Impl& I, bool core) {
   double m = 0.0;
-  for (std::size_t i = Impl::state_size - 1; i < impl_->plastic.size(); i += Impl::state_size)
-    m = std::max(m, impl_->plastic[i]);
+  if (!I.any_plastic()) return m;
+  for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
+    for (unsigned lane = 0; lane < Impl::W; ++lane) {
+      if (!I.lane_is_plastic(cell, lane) || I.lane_layer_spec(cell, lane)->core_yield.has_value() != core) continue;
+      for (unsigned q = 0; q < I.n_q; ++q) m = std::max(m, I.state(cell, q, lane)[6]);
+    }
   return m;
 }
+}  // namespace
+
+double FarField::max_equivalent_plastic_strain() const { return max_accumulated(*impl_, false); }
+double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_, true); }
 
 std::vector<std::pair<std::string, std::span<double>>> FarField::plastic_state() {
   if (!impl_->any_plastic()) return {};

@@ -2,7 +2,8 @@
 // The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
 // two elements through its thickness, the core a homogenised orthotropic solid), total
 // Lagrangian (every quantity refers to the undeformed mesh), optionally J2 plasticity in the
-// isotropic layers (fem/j2_plasticity.hpp), explicit central differences with a lumped mass, and
+// isotropic layers (fem/j2_plasticity.hpp) and capped out-of-plane stresses in a yielding core
+// (fem/core_yield.hpp), explicit central differences with a lumped mass, and
 // matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
 // callers see nodes as plain arrays.
 //
@@ -30,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "fem/core_yield.hpp"
 #include "fem/orthotropic.hpp"
 #include "mpm/materials/johnson_cook.hpp"
 
@@ -45,6 +47,9 @@ struct Layer {
   // J2 plasticity with this hardening curve (its A, B, n; rate and thermal factors 1), for an
   // isotropic layer only; none: the layer stays elastic and keeps no plastic state.
   std::optional<mpm::JohnsonCookStrength> plasticity;
+  // A honeycomb core's out-of-plane normal and transverse shear stresses capped where its walls
+  // yield (fem/core_yield.hpp); none: elastic. A layer takes this or `plasticity`, not both.
+  std::optional<CoreYield> core_yield;
 };
 
 struct LayeredMesh {
@@ -127,16 +132,21 @@ class FarField {
 
   // Whether the kinematics are finite (Green-Lagrange) rather than small strain.
   bool finite_strain() const;
-  // Whether any layer is plastic; the largest equivalent plastic strain at any quadrature point.
+  // Whether any layer is plastic (J2 or a yielding core); the largest equivalent plastic strain
+  // at any quadrature point of the J2 layers; the largest accumulated plastic strain of a
+  // yielding core's (sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz|), 0 without one.
   bool plastic() const;
   double max_equivalent_plastic_strain() const;
-  // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha) and the
-  // plastic work, for checkpoints; empty when no layer is plastic.
+  double max_core_plastic_strain() const;
+  // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha, the
+  // accumulated plastic strain in a yielding core) and the plastic work, for checkpoints; empty
+  // when no layer is plastic.
   std::vector<std::pair<std::string, std::span<double>>> plastic_state();
 
   std::size_t bytes() const;
   // The mesh and the current displacement and velocity as a VTU file for ParaView (with plastic
-  // layers also each cell's largest equivalent plastic strain).
+  // layers also each cell's largest equivalent plastic strain, or in a yielding core its
+  // accumulated plastic strain).
   void write_vtu(const std::string& path) const;
   // A ParaView collection (.pvd) of VTU files: (time, file relative to the .pvd) per entry.
   static void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

@@ -379,7 +379,11 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
   if (hybrid && hybrid->far_field().plastic()) {
     const double alpha = hybrid->far_field().max_equivalent_plastic_strain();
-    fmt::print("  far field: largest plastic strain {:.4g}, plastic work {:.6g} J\n", alpha, hybrid->far_field().plastic_work());
+    fmt::print("  far field: largest plastic strain {:.4g}{}, plastic work {:.6g} J\n", alpha,
+               scene.far_field->yielding_core
+                   ? fmt::format(" (core: {:.4g})", hybrid->far_field().max_core_plastic_strain())
+                   : std::string(),
+               hybrid->far_field().plastic_work());
     // Beyond a few percent the damage has reached the zone's edge, which the far field cannot tear
     // (and small-strain J2 stops meaning much).
     if (alpha > 0.05)
@@ -441,8 +445,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (hybrid) {
     summary.insert("far_field_nodes", static_cast<std::int64_t>(hybrid->far_field().node_count()));
     summary.insert("far_field_elements", static_cast<std::int64_t>(hybrid->far_field().cell_count()));
-    if (hybrid->far_field().plastic()) {  // only when the scene asks for J2 facesheets
+    if (hybrid->far_field().plastic()) {  // only when the scene asks for J2 facesheets or a yielding core
       summary.insert("far_field_max_plastic_strain", hybrid->far_field().max_equivalent_plastic_strain());
+      if (scene.far_field->yielding_core)
+        summary.insert("far_field_max_core_plastic_strain", hybrid->far_field().max_core_plastic_strain());
       summary.insert("far_field_plastic_work", hybrid->far_field().plastic_work());
     }
   }

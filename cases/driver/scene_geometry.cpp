@@ -204,6 +204,7 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.clamped_edges = text(t, "edges") == "clamped";
   f.plastic_faces = text(t, "plasticity") == "j2";
   f.finite_strain = text(t, "kinematics") == "finite";
+  f.yielding_core = text(t, "core") == "yielding";
   std::size_t reported = s.materials.size();  // front and rear often share a material: one error
   if (f.plastic_faces)
     for (const auto& b : s.bodies) {
@@ -216,6 +217,17 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
       error("plasticity", fmt::format("\"j2\" hardens the facesheets as their material's Johnson-Cook strength; "
                                         "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or plasticity = \"none\"",
                                         m.name, b.name, m.strength));
+    }
+  if (f.yielding_core)
+    for (const auto& b : s.bodies) {
+      const auto* part = std::get_if<PanelPart>(&b.shape);
+      if (!part || part->panel != f.panel || part->part != PanelPart::core || b.material >= s.materials.size())
+        continue;
+      const MaterialSettings& m = s.materials[b.material];
+      if (!m.models.johnson_cook)
+        error("core", fmt::format("\"yielding\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
+                                  "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
+                                  m.name, b.name, m.strength));
     }
   const double h = s.grid.cell_size;
   f.max_element = t["max_element"].value<double>().value_or(6.0 * std::min(p.front_thickness, p.rear_thickness));

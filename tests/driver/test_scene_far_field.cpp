@@ -85,6 +85,23 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   // J2 facesheets harden as their material's Johnson-Cook strength: the elastic aluminium has none.
   d = error_for({"far_field.plasticity=j2"}, "far_field.plasticity");
   EXPECT_NE(d.message.find("'aluminium' (panel.front) names strength = \"elastic\""), std::string::npos) << d.message;
+
+  // A yielding core caps its stresses at its walls' yield, their Johnson-Cook A.
+  d = error_for({"far_field.core=yielding"}, "far_field.core");
+  EXPECT_NE(d.message.find("'aluminium' (panel.core) names strength = \"elastic\""), std::string::npos) << d.message;
+  d = error_for({"far_field.core=crushable"}, "far_field.core");
+  EXPECT_NE(d.message.find("yielding"), std::string::npos) << d.message;
+}
+
+TEST(SceneFarField, YieldingCoreOnlyWhenNamed) {
+  const Scene small = parse_scene(small_hybrid(), "small_hybrid.toml");
+  EXPECT_FALSE(small.far_field->yielding_core);
+  EXPECT_EQ(small.resolved["far_field"]["core"].value_or(std::string{}), "elastic");
+  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml",
+                              {"far_field.core=yielding", "material.aluminium.library=Al6061",
+                               "material.aluminium.strength=johnson-cook"});
+  EXPECT_TRUE(s.far_field->yielding_core);
+  EXPECT_FALSE(s.far_field->plastic_faces);
 }
 
 // The far field's elements share the solver's (field 0's) nodes: a part of its panel cannot be on

@@ -28,7 +28,7 @@ inline LayeredMesh block(int degree, bool plastic, bool finite_strain = false) {
   m.lower = {0, 0};
   m.x_steps = {0.5 * L, 0.5 * L};
   m.y_steps = {0.5 * L, 0.5 * L};
-  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt}};
+  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt, std::nullopt}};
   m.degree = degree;
   m.finite_strain = finite_strain;
   return m;

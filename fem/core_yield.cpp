@@ -1,0 +1,47 @@
+#include "fem/core_yield.hpp"
+
+#include <cmath>
+
+namespace hvi::fem {
+
+CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modulus, double wall_poisson_ratio,
+                               double wall_yield_stress) {
+  const double shear_modulus = wall_youngs_modulus / (2.0 * (1.0 + wall_poisson_ratio));
+  const double shear_yield = wall_yield_stress / std::sqrt(3.0);
+  return {core.E3 / wall_youngs_modulus * wall_yield_stress, core.G13 / shear_modulus * shear_yield,
+          core.G23 / shear_modulus * shear_yield};
+}
+
+CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain, double accumulated,
+                                  const std::array<double, 9>& C, const CoreYield& caps) {
+  CoreYieldUpdate r{trial_stress, plastic_strain, accumulated, 0.0};
+  // sigma_zz (Voigt 2) against +-Y3; C = {C11, C22, C33, C12, C13, C23, C44, C55, C66}.
+  const double szz = trial_stress[2];
+  if (std::abs(szz) > caps.normal) {
+    const double cap = std::copysign(caps.normal, szz);
+    const double d = (szz - cap) / C[2];
+    r.stress[0] -= C[4] * d;
+    r.stress[1] -= C[5] * d;
+    r.stress[2] = cap;
+    r.plastic_strain[2] += d;
+    r.accumulated += std::abs(d);
+    r.plastic_work += caps.normal * std::abs(d);
+  }
+  // The shears: Voigt 3 = yz (C44 = G23), 4 = xz (C55 = G13).
+  const struct {
+    int k;
+    double modulus, cap;
+  } shears[2] = {{3, C[6], caps.shear_yz}, {4, C[7], caps.shear_xz}};
+  for (const auto& s : shears) {
+    const double tau = trial_stress[s.k];
+    if (std::abs(tau) <= s.cap) continue;
+    const double dgamma = (tau - std::copysign(s.cap, tau)) / s.modulus;
+    r.stress[s.k] = std::copysign(s.cap, tau);
+    r.plastic_strain[s.k] += 0.5 * dgamma;
+    r.accumulated += std::abs(dgamma);
+    r.plastic_work += s.cap * std::abs(dgamma);
+  }
+  return r;
+}
+
+}  // namespace hvi::fem

@@ -1,0 +1,53 @@
+#pragma once
+// Yield of the far field's homogenised honeycomb core (far_field.core = "yielding"): the stresses
+// the walls carry, the out-of-plane normal sigma_zz and the two transverse shears sigma_xz,
+// sigma_yz, are each capped where the walls yield, elastic-perfectly plastic and uncoupled, as a
+// honeycomb core's strengths are quoted (flatwise tension and compression, L and W shear) and as
+// LS-DYNA's *MAT_HONEYCOMB treats the uncompacted core. The in-plane stresses, carried by wall
+// bending at 1e-4 of the facesheets' stiffness, stay elastic.
+//
+// The caps follow from the same kinematics as the moduli (fem/orthotropic.hpp): the walls of a
+// core strained along z carry sigma_s = E_s eps, so sigma_zz = (E3 / E_s) sigma_s; sheared in xz
+// (yz) they carry tau_s = G_s gamma, so sigma_xz = (G13 / G_s) tau_s. With the walls' yield
+// stress sigma_ys (their Johnson-Cook A) and von Mises' tau_ys = sigma_ys / sqrt(3):
+//   sigma_zz in [-Y3, Y3],  Y3 = (E3 / E_s) sigma_ys = sigma_ys rho*/rho_s
+//   |sigma_xz| <= Y13 = (G13 / G_s) sigma_ys / sqrt(3)       (= sigma_ys t / (sqrt(3) D), single walls)
+//   |sigma_yz| <= Y23 = (G23 / G_s) sigma_ys / sqrt(3)
+// The compressive cap is the walls' squash load, an upper bound: thin walls buckle and fold
+// first (Wierzbicki 1983), so crushing starts lower in a real core; in tension and shear the walls
+// yield as assumed.
+//
+// The return (per component, with sigma = C (eps - eps_p) and C orthotropic): a trial sigma_zz
+// beyond its cap takes d eps_p,zz = (sigma_zz - cap) / C33, which also lowers sigma_xx and sigma_yy
+// by C13 and C23 times it; a trial shear beyond its cap takes d gamma_p = (tau - cap) / C44 (or
+// C55) in engineering strain, half of it in the tensor component. The work of the step per unit
+// volume, cap |d eps_p| summed, is never negative.
+#include <array>
+
+#include "fem/j2_plasticity.hpp"
+#include "fem/orthotropic.hpp"
+
+namespace hvi::fem {
+
+struct CoreYield {
+  double normal = 0;    // Y3, Pa: |sigma_zz| at yield
+  double shear_xz = 0;  // Y13, Pa
+  double shear_yz = 0;  // Y23, Pa
+};
+
+// The caps above from the core's moduli, its walls' E_s, nu_s and yield stress sigma_ys.
+CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modulus, double wall_poisson_ratio,
+                               double wall_yield_stress);
+
+struct CoreYieldUpdate {
+  Sym stress{};
+  Sym plastic_strain{};  // tensor shears, as Sym
+  double accumulated = 0.0;  // sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz| so far
+  double plastic_work = 0.0;  // J/m^3 over the step
+};
+
+// `trial_stress` = C (eps - eps_p,n); `C` the nine entries of fem::stiffness().
+CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain, double accumulated,
+                                  const std::array<double, 9>& C, const CoreYield& caps);
+
+}  // namespace hvi::fem

@@ -1,0 +1,125 @@
+// The far field's yielding core (fem/core_yield.hpp) against closed forms: its caps from the
+// walls' yield stress, and a block of core strained homogeneously through the matrix-free force,
+// out of plane (uniaxial strain along z) and in transverse shear, loaded past yield and reversed.
+// Each cap is elastic-perfectly plastic, so every stress, plastic strain and the plastic work are
+// exact piecewise-linear functions of the strain: tolerances are round-off (1e-9 relative).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "fem/core_yield.hpp"
+#include "fem/far_field.hpp"
+#include "block.hpp"
+
+namespace hvi::fem {
+namespace {
+
+using test::L;
+
+// The study panel's core (Table 3): Al5052 walls (Table 4: E, nu, density, Johnson-Cook A),
+// D_hc = 3.0 mm, t_hc = 0.05 mm.
+constexpr double Es = 73e9, nus = 0.33, rhos = 2680, sigma_ys = 265e6, D = 3.0e-3, t = 0.05e-3;
+
+TEST(CoreYield, CapsAreTheWallsYieldThroughTheModuli) {
+  const double solidity = honeycomb_core_solidity(D, t);
+  const CoreYield single = honeycomb_core_yield(honeycomb_core(Es, nus, D, t), Es, nus, sigma_ys);
+  // Flatwise: every wall yields along z at once, sigma_ys times the walls' area fraction.
+  EXPECT_NEAR(single.normal, sigma_ys * solidity, 1e-12 * single.normal);
+  // Transverse shear of single walls: G13 = G_s t / D, so Y13 = (sigma_ys / sqrt 3) t / D.
+  EXPECT_NEAR(single.shear_xz, sigma_ys / std::sqrt(3.0) * t / D, 1e-12 * single.shear_xz);
+  EXPECT_NEAR(single.shear_yz, single.shear_xz, 1e-12 * single.shear_xz);
+  // Double walls: along the ribbon (yz) 19/12 of the single-wall value, as G23.
+  const CoreYield doubled = honeycomb_core_yield(honeycomb_core(Es, nus, D, t, true), Es, nus, sigma_ys);
+  EXPECT_NEAR(doubled.shear_yz, 19.0 / 12.0 * single.shear_xz, 1e-12 * single.shear_xz);
+  EXPECT_NEAR(doubled.shear_xz, single.shear_xz, 1e-12 * single.shear_xz);
+  EXPECT_NEAR(doubled.normal, sigma_ys * honeycomb_core_solidity(D, t, true), 1e-12 * doubled.normal);
+}
+
+LayeredMesh core_block(int degree, bool yielding) {
+  const Orthotropic core = honeycomb_core(Es, nus, D, t);
+  LayeredMesh m;
+  m.lower = {0, 0};
+  m.x_steps = {0.5 * L, 0.5 * L};
+  m.y_steps = {0.5 * L, 0.5 * L};
+  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt,
+               yielding ? std::optional(honeycomb_core_yield(core, Es, nus, sigma_ys)) : std::nullopt}};
+  m.degree = degree;
+  return m;
+}
+
+// Column `axis` of the homogeneous stress, read from the forces on the face X_axis = L.
+std::array<double, 3> traction(FarField& f, int axis) {
+  std::vector<double> force(3 * f.node_count());
+  f.internal_force(force);
+  auto s = test::face_force(force, f, axis);
+  for (double& v : s) v /= -(L * L);
+  return s;
+}
+
+// Uniaxial strain e along z: sigma_zz = C33 (e - e_p) clamped to +-Y3, e_p moving only at a cap;
+// sigma_xx = C13 (e - e_p). Loaded to 3 e_y (e_y = Y3 / C33), then back to 0: reverse yield sets
+// in at e = e_max - 2 e_y = e_y and leaves e_p = e_y at the end. Plastic work: Y3 (2 e_y + e_y) V.
+TEST(CoreYield, UniaxialStrainOutOfPlaneLoadAndReverse) {
+  const Orthotropic core = honeycomb_core(Es, nus, D, t);
+  const auto C = stiffness(core);
+  const CoreYield caps = honeycomb_core_yield(core, Es, nus, sigma_ys);
+  const double ey = caps.normal / C[2], V = L * L * L;
+  for (const int degree : {1, 2}) {
+    FarField f(core_block(degree, true));
+    ASSERT_TRUE(f.plastic());
+    double ep = 0;  // the closed form's plastic strain
+    auto check = [&](double e) {
+      test::deform(f, {{{0, 0, 0}, {0, 0, 0}, {0, 0, e}}});
+      const double trial = C[2] * (e - ep);
+      if (std::abs(trial) > caps.normal) ep = e - std::copysign(caps.normal, trial) / C[2];
+      const auto sz = traction(f, 2), sx = traction(f, 0);
+      EXPECT_NEAR(sz[2], C[2] * (e - ep), 1e-9 * caps.normal) << "degree " << degree << ", e " << e;
+      EXPECT_NEAR(sx[0], C[4] * (e - ep), 1e-9 * caps.normal) << "degree " << degree << ", e " << e;
+      EXPECT_NEAR(sz[0], 0.0, 1e-9 * caps.normal);
+    };
+    const int n = 30;
+    for (int k = 1; k <= n; ++k) check(3 * ey * k / n);
+    EXPECT_NEAR(ep, 2 * ey, 1e-12 * ey);
+    EXPECT_NEAR(f.max_core_plastic_strain(), 2 * ey, 1e-9 * ey);
+    for (int k = n - 1; k >= 0; --k) check(3 * ey * k / n);
+    EXPECT_NEAR(ep, ey, 1e-9 * ey);
+    EXPECT_NEAR(f.max_core_plastic_strain(), 3 * ey, 1e-9 * ey);
+    EXPECT_NEAR(f.plastic_work(), 3 * caps.normal * ey * V, 1e-9 * caps.normal * ey * V);
+    EXPECT_EQ(f.max_equivalent_plastic_strain(), 0.0);  // no J2 layer
+    // The stored energy is the residual elastic strain's: -e_p at zero strain, 1/2 C33 e_y^2 V.
+    EXPECT_NEAR(f.strain_energy(), 0.5 * C[2] * ey * ey * V, 1e-9 * C[2] * ey * ey * V);
+  }
+}
+
+// Transverse shear u_x = gamma z (and u_y = gamma z): sigma_xz = G13 (gamma - gamma_p) capped at
+// Y13, sigma_yz likewise at Y23; loaded to 3 gamma_y and held there.
+TEST(CoreYield, TransverseShearCapsAtTheWallsShearYield) {
+  const Orthotropic core = honeycomb_core(Es, nus, D, t);
+  const CoreYield caps = honeycomb_core_yield(core, Es, nus, sigma_ys);
+  const double gy = caps.shear_xz / core.G13, V = L * L * L;
+  FarField f(core_block(2, true));
+  for (const double g : {0.5 * gy, gy, 2 * gy, 3 * gy}) {
+    test::deform(f, {{{0, 0, g}, {0, 0, g}, {0, 0, 0}}});
+    const auto sz = traction(f, 2);
+    const double expected = std::min(core.G13 * g, caps.shear_xz);
+    EXPECT_NEAR(sz[0], expected, 1e-9 * caps.shear_xz) << "gamma " << g;
+    EXPECT_NEAR(sz[1], std::min(core.G23 * g, caps.shear_yz), 1e-9 * caps.shear_yz) << "gamma " << g;
+    EXPECT_NEAR(sz[2], 0.0, 1e-9 * caps.shear_xz);
+  }
+  // gamma_p = 2 gamma_y in each of the two shears; work Y (2 gamma_y) V each.
+  EXPECT_NEAR(f.max_core_plastic_strain(), 4 * gy, 1e-9 * gy);
+  EXPECT_NEAR(f.plastic_work(), 2 * caps.shear_xz * 2 * gy * V, 1e-9 * caps.shear_xz * gy * V);
+}
+
+// An elastic core keeps no state; a layer may not name both models.
+TEST(CoreYield, OnlyWhenNamedAndNotWithJ2) {
+  EXPECT_FALSE(FarField(core_block(1, false)).plastic());
+  LayeredMesh both = core_block(1, true);
+  both.layers[0].elasticity = isotropic(test::E, test::nu);
+  both.layers[0].plasticity = test::al6061();
+  EXPECT_THROW(FarField{both}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hvi::fem
