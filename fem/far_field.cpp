@@ -1,5 +1,5 @@
-// The far field with deal.II: mesh, DoFs numbered node-major, matrix-free stiffness (and J2
-// stresses in plastic layers), lumped mass, the element bound of the stable time step, and VTU
+// The far field with deal.II: mesh, DoFs numbered node-major, matrix-free stiffness (and J2 or
+// capped core stresses in plastic layers), lumped mass, the element bound of the stable time step, and VTU
 // output.
 #include "fem/far_field.hpp"
 
