@@ -1,6 +1,9 @@
 #include "mpm/io/checkpoint.hpp"
 
 #include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "mpm/io/hdf5_file.hpp"
 
@@ -13,6 +16,7 @@ const std::string kind_prefix = "kind:";     // attribute kind:<name> = FieldKin
 const std::string output_prefix = "output:";  // attribute output:<name> = 1 if snapshots hold it
 const std::string extra_prefix = "extra:";
 const std::string coupled_prefix = "coupled_";  // datasets of the couplings' state
+const std::string field_order = "field_order";   // attribute: the fields' names in declaration order
 }  // namespace
 
 void write_checkpoint(const fs::path& path, const Solver& solver, const CheckpointExtras& extras) {
@@ -21,13 +25,16 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
     Hdf5File file(tmp.string(), Hdf5File::Mode::create);
     const Particles& P = solver.particles();
     const std::size_t n = P.size();
+    std::string order;  // the fields in the order they were declared, which the snapshots follow
     for (const auto& f : P.real_fields()) {
       if (f.scratch) continue;
       const int nc = components(f.kind);
       file.write("field_" + f.name, f.data->data(), n, nc);
       file.write_attribute(kind_prefix + f.name, static_cast<std::int64_t>(f.kind));
       file.write_attribute(output_prefix + f.name, static_cast<std::int64_t>(f.output));
+      order += (order.empty() ? "" : ",") + f.name;
     }
+    file.write_attribute(field_order, order);
     for (const auto& f : P.int_fields()) file.write("int_" + f.name, f.data->data(), n, 1);
     const SolverState& s = solver.state();
     file.write_attribute("time", s.time);
@@ -53,7 +60,18 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
   Particles& P = solver.particles();
   const std::size_t n = file.shape("int_id").first;
   P.resize(n);
-  for (const auto& name : file.dataset_names()) {
+  // Fields the models declare only once they run are declared here, in the order the checkpoint
+  // lists them (HDF5 lists its datasets alphabetically), so a resumed run's snapshots hold their
+  // fields in the same order as an uninterrupted run's, to the byte.
+  std::vector<std::string> names;
+  if (file.has_attribute(field_order)) {
+    std::stringstream list(file.read_string_attribute(field_order));
+    for (std::string f; std::getline(list, f, ',');) names.push_back("field_" + f);
+  }
+  for (const auto& name : file.dataset_names())
+    if (name.rfind("field_", 0) != 0 || std::find(names.begin(), names.end(), name) == names.end())
+      names.push_back(name);
+  for (const auto& name : names) {
     if (name.rfind("field_", 0) == 0) {
       const std::string field = name.substr(6);
       const auto kind = static_cast<FieldKind>(file.read_integer_attribute(kind_prefix + field));
