@@ -205,30 +205,26 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.plastic_faces = text(t, "plasticity") == "j2";
   f.finite_strain = text(t, "kinematics") == "finite";
   f.yielding_core = text(t, "core") == "yielding";
-  std::size_t reported = s.materials.size();  // front and rear often share a material: one error
-  if (f.plastic_faces)
-    for (const auto& b : s.bodies) {
-      const auto* part = std::get_if<PanelPart>(&b.shape);
-      if (!part || part->panel != f.panel || part->part == PanelPart::core || b.material >= s.materials.size())
-        continue;
-      const MaterialSettings& m = s.materials[b.material];
-      if (m.models.johnson_cook || b.material == reported) continue;
-      reported = b.material;
+  // J2 facesheets and a yielding core take their materials' Johnson-Cook strength (hardening, or
+  // the walls' yield stress A). Front and rear often share a material: one error for it.
+  std::size_t reported = s.materials.size();
+  for (const auto& b : s.bodies) {
+    const auto* part = std::get_if<PanelPart>(&b.shape);
+    if (!part || part->panel != f.panel || b.material >= s.materials.size()) continue;
+    const bool core = part->part == PanelPart::core;
+    const MaterialSettings& m = s.materials[b.material];
+    if (!(core ? f.yielding_core : f.plastic_faces) || m.models.johnson_cook || (!core && b.material == reported))
+      continue;
+    if (!core) reported = b.material;
+    if (core)
+      error("core", fmt::format("\"yielding\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
+                                "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
+                                m.name, b.name, m.strength));
+    else
       error("plasticity", fmt::format("\"j2\" hardens the facesheets as their material's Johnson-Cook strength; "
-                                        "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or plasticity = \"none\"",
-                                        m.name, b.name, m.strength));
-    }
-  if (f.yielding_core)
-    for (const auto& b : s.bodies) {
-      const auto* part = std::get_if<PanelPart>(&b.shape);
-      if (!part || part->panel != f.panel || part->part != PanelPart::core || b.material >= s.materials.size())
-        continue;
-      const MaterialSettings& m = s.materials[b.material];
-      if (!m.models.johnson_cook)
-        error("core", fmt::format("\"yielding\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
-                                  "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
-                                  m.name, b.name, m.strength));
-    }
+                                      "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or plasticity = \"none\"",
+                                      m.name, b.name, m.strength));
+  }
   const double h = s.grid.cell_size;
   f.max_element = t["max_element"].value<double>().value_or(6.0 * std::min(p.front_thickness, p.rear_thickness));
   s.resolved["far_field"].as_table()->insert_or_assign("max_element", f.max_element);
