@@ -71,6 +71,11 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
     core_yield = fem::honeycomb_core_yield(core_moduli, spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio,
                                            spec.core_wall.hardening->A);
   }
+  if (spec.failing_core) {
+    if (!core_yield || !spec.core_wall.damage)
+      throw std::invalid_argument("far field: a failing core yields and needs its walls' Johnson-Cook damage");
+    core_yield->failure = fem::honeycomb_core_failure(*spec.core_wall.damage);
+  }
   m.layers = {
       {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density,
        spec.rear.hardening, std::nullopt},

@@ -22,6 +22,8 @@ struct SolidMaterial {
   // J2 plasticity (facesheets), or for the core's walls the yield stress of a yielding core (its
   // A); none: elastic.
   std::optional<mpm::JohnsonCookStrength> hardening;
+  // For the core's walls of a failing core: their Johnson-Cook damage (eqs. 2-3); none otherwise.
+  std::optional<mpm::JohnsonCookDamage> damage;
 };
 
 struct PanelFarFieldSpec {
@@ -36,10 +38,13 @@ struct PanelFarFieldSpec {
   // The core's out-of-plane stresses capped where its walls yield (fem/core_yield.hpp, sigma_ys
   // = core_wall.hardening's A); false: the core stays elastic.
   bool yielding_core = false;
+  // A yielding core whose walls also fail, where their Johnson-Cook damage (core_wall.damage)
+  // reaches 1 (fem/core_yield.hpp); false: the caps hold.
+  bool failing_core = false;
 };
 
 // Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, a
-// yielding core's walls have no hardening (yield stress), or the
+// yielding core's walls have no hardening (yield stress), a failing core's no damage, or the
 // panel has double walls and its cell pattern is not turned by a multiple of 90 degrees (the
 // core's orthotropic axes must be the panel's).
 fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,

@@ -9,12 +9,46 @@ CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modul
   const double shear_modulus = wall_youngs_modulus / (2.0 * (1.0 + wall_poisson_ratio));
   const double shear_yield = wall_yield_stress / std::sqrt(3.0);
   return {core.E3 / wall_youngs_modulus * wall_yield_stress, core.G13 / shear_modulus * shear_yield,
-          core.G23 / shear_modulus * shear_yield};
+          core.G23 / shear_modulus * shear_yield, std::nullopt};
 }
 
+CoreFailure honeycomb_core_failure(const mpm::JohnsonCookDamage& walls) {
+  // Reference rate (factor 1) and room temperature (T* = 0).
+  return {walls.failure_strain(1.0 / 3.0, 0.0, 0.0), walls.failure_strain(-1.0 / 3.0, 0.0, 0.0),
+          walls.failure_strain(0.0, 0.0, 0.0)};
+}
+
+namespace {
+
+// Torn walls: sigma_zz, sigma_yz and sigma_xz of `r` to zero, the strain they stood on to the
+// plastic strain, and the elastic energy that releases, 1/2 sigma : d eps_p (the stress after is
+// zero in these components), to the work.
+void release(CoreYieldUpdate& r, const std::array<double, 9>& C) {
+  const double szz = r.stress[2], d = szz / C[2];
+  r.stress[0] -= C[4] * d;
+  r.stress[1] -= C[5] * d;
+  r.stress[2] = 0.0;
+  r.plastic_strain[2] += d;
+  r.accumulated += std::abs(d);
+  r.plastic_work += 0.5 * szz * d;
+  for (const auto& [k, modulus] : {std::pair{3, C[6]}, std::pair{4, C[7]}}) {
+    const double tau = r.stress[k], dgamma = tau / modulus;
+    r.stress[k] = 0.0;
+    r.plastic_strain[k] += 0.5 * dgamma;
+    r.accumulated += std::abs(dgamma);
+    r.plastic_work += 0.5 * tau * dgamma;
+  }
+}
+
+}  // namespace
+
 CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain, double accumulated,
-                                  const std::array<double, 9>& C, const CoreYield& caps) {
-  CoreYieldUpdate r{trial_stress, plastic_strain, accumulated, 0.0};
+                                  double damage, const std::array<double, 9>& C, const CoreYield& caps) {
+  CoreYieldUpdate r{trial_stress, plastic_strain, accumulated, damage, 0.0};
+  if (caps.failure && damage >= 1.0) {  // torn before this step: carries nothing out of plane
+    release(r, C);
+    return r;
+  }
   // sigma_zz (Voigt 2) against +-Y3; C = {C11, C22, C33, C12, C13, C23, C44, C55, C66}.
   const double szz = trial_stress[2];
   if (std::abs(szz) > caps.normal) {
@@ -26,6 +60,7 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
     r.plastic_strain[2] += d;
     r.accumulated += std::abs(d);
     r.plastic_work += caps.normal * std::abs(d);
+    if (caps.failure) r.damage += std::abs(d) / (d > 0 ? caps.failure->tension : caps.failure->compression);
   }
   // The shears: Voigt 3 = yz (C44 = G23), 4 = xz (C55 = G13).
   const struct {
@@ -40,7 +75,9 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
     r.plastic_strain[s.k] += 0.5 * dgamma;
     r.accumulated += std::abs(dgamma);
     r.plastic_work += s.cap * std::abs(dgamma);
+    if (caps.failure) r.damage += std::abs(dgamma) / (std::sqrt(3.0) * caps.failure->shear);
   }
+  if (caps.failure && r.damage >= 1.0) release(r, C);  // torn in this step
   return r;
 }
 

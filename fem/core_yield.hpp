@@ -22,17 +22,41 @@
 // by C13 and C23 times it; a trial shear beyond its cap takes d gamma_p = (tau - cap) / C44 (or
 // C55) in engineering strain, half of it in the tensor component. The work of the step per unit
 // volume, cap |d eps_p| summed, is never negative.
+//
+// A failing core (far_field.core = "failing") adds the walls' Johnson-Cook damage, the paper's
+// eqs. (2)-(3) with the rate and thermal factors at 1 (as the far field's hardening): each step's
+// plastic strain of the walls over their failure strain at the triaxiality of its mode,
+//   D += |d eps_p,zz| / eps_f(+-1/3) + (|d gamma_p,xz| + |d gamma_p,yz|) / (sqrt(3) eps_f(0)),
+// for a wall strained along z is in uniaxial stress (triaxiality 1/3 in tension, -1/3 in
+// compression) and a sheared wall in pure shear (0, its equivalent strain gamma / sqrt(3)). Where
+// D reaches 1 the walls are torn: sigma_zz, sigma_xz and sigma_yz drop to zero then and stay
+// there (the strain goes to eps_p), as the MPM's failed wall points carry no tension or shear.
+// Crushed walls that compact again (densification, at strains near 1 - rho*/rho_s) are not
+// modelled. The elastic energy the drop releases, 1/2 (sigma_before + sigma_after) : d eps_p
+// exactly for a linear solid, is booked as work, so the energy balance holds through failure.
 #include <array>
+#include <optional>
 
 #include "fem/j2_plasticity.hpp"
 #include "fem/orthotropic.hpp"
+#include "mpm/materials/johnson_cook_damage.hpp"
 
 namespace hvi::fem {
+
+// The walls' failure strains eps_f = D1 + D2 exp(D3 triaxiality) in each mode.
+struct CoreFailure {
+  double tension = 0;      // triaxiality 1/3
+  double compression = 0;  // -1/3
+  double shear = 0;        // 0
+};
+
+CoreFailure honeycomb_core_failure(const mpm::JohnsonCookDamage& walls);
 
 struct CoreYield {
   double normal = 0;    // Y3, Pa: |sigma_zz| at yield
   double shear_xz = 0;  // Y13, Pa
   double shear_yz = 0;  // Y23, Pa
+  std::optional<CoreFailure> failure;  // a failing core; none: the caps hold at any strain
 };
 
 // The caps above from the core's moduli, its walls' E_s, nu_s and yield stress sigma_ys.
@@ -43,11 +67,13 @@ struct CoreYieldUpdate {
   Sym stress{};
   Sym plastic_strain{};  // tensor shears, as Sym
   double accumulated = 0.0;  // sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz| so far
+  double damage = 0.0;       // D of a failing core (>= 1: failed); 0 otherwise
   double plastic_work = 0.0;  // J/m^3 over the step
 };
 
-// `trial_stress` = C (eps - eps_p,n); `C` the nine entries of fem::stiffness().
+// `trial_stress` = C (eps - eps_p,n); `C` the nine entries of fem::stiffness(); `damage` D at the
+// start of the step (a failing core's; 0 otherwise).
 CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain, double accumulated,
-                                  const std::array<double, 9>& C, const CoreYield& caps);
+                                  double damage, const std::array<double, 9>& C, const CoreYield& caps);
 
 }  // namespace hvi::fem

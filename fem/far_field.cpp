@@ -121,9 +121,10 @@ struct FarField::Impl {
 
   // Plasticity, kept only when a layer names it. lane_layer[W cell + lane] is the layer of each
   // lane of each cell batch (-1: an empty lane); a batch with a plastic lane has a slot in
-  // `plastic` of n_q * W * 7 values: per quadrature point and lane eps_p (Voigt) and alpha.
+  // `plastic` of n_q * W * state_size values: per quadrature point and lane eps_p (Voigt) and
+  // alpha, and with a failing core an eighth, its damage D (0 in the other lanes).
   static constexpr unsigned W = VA::size();
-  static constexpr int state_size = 7;
+  int state_size = 7;
   std::vector<int> lane_layer, plastic_slot;
   std::vector<double> plastic;
   mutable std::vector<double> batch_sum;  // per cell batch: its share of a sum, added in order
@@ -195,8 +196,10 @@ struct FarField::Impl {
         for (int k = 0; k < 9; ++k) Cl[k] = C[k][lane];
         Sym old;
         std::copy(st, st + 6, old.begin());
-        const CoreYieldUpdate r = core_yield_return(trial, old, st[6], Cl, *L.core_yield);
+        const bool failing = L.core_yield->failure.has_value();
+        const CoreYieldUpdate r = core_yield_return(trial, old, st[6], failing ? st[7] : 0.0, Cl, *L.core_yield);
         stress = r.stress, plastic_strain = r.plastic_strain, accumulated = r.accumulated, work = r.plastic_work;
+        if (failing) st[7] = r.damage;
       } else {
         J2State old;
         std::copy(st, st + 6, old.plastic_strain.begin());
@@ -544,6 +547,9 @@ void FarField::Impl::setup_plasticity() {
         break;
       }
   }
+  state_size = 7;
+  for (const Layer& L : spec.layers)
+    if (L.core_yield && L.core_yield->failure) state_size = 8;
   plastic.assign(static_cast<std::size_t>(slots) * n_q * W * state_size, 0.0);
   if (slots == 0) {  // nothing plastic: keep no per-batch tables either
     lane_layer = {};
@@ -703,6 +709,20 @@ double max_accumulated(const Impl& I, bool core) {
 double FarField::max_equivalent_plastic_strain() const { return max_accumulated(*impl_, false); }
 double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_, true); }
 
+double FarField::core_failed_volume() const {
+  const auto& I = *impl_;
+  if (I.state_size < 8) return 0.0;
+  double v = 0.0;
+  for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
+    for (unsigned lane = 0; lane < Impl::W; ++lane) {
+      if (!I.lane_is_plastic(cell, lane) || !I.lane_layer_spec(cell, lane)->core_yield) continue;
+      unsigned failed = 0;
+      for (unsigned q = 0; q < I.n_q; ++q) failed += I.state(cell, q, lane)[7] >= 1.0;
+      v += I.matrix_free.get_cell_iterator(cell, lane)->measure() * failed / I.n_q;
+    }
+  return v;
+}
+
 std::vector<std::pair<std::string, std::span<double>>> FarField::plastic_state() {
   if (!impl_->any_plastic()) return {};
   return {{"far_field_plastic_state", impl_->plastic}, {"far_field_plastic_work", {&impl_->plastic_work, 1}}};
@@ -745,6 +765,18 @@ void FarField::write_vtu(const std::string& path) const {
         alpha[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()] = m;
       }
     out.add_data_vector(alpha, "equivalent_plastic_strain", DataOut<dim>::type_cell_data);
+  }
+  Vector<double> damage;  // a failing core: per cell the largest D at its quadrature points
+  if (I.state_size == 8) {
+    damage.reinit(I.triangulation.n_active_cells());
+    for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
+      for (unsigned lane = 0; lane < Impl::W; ++lane) {
+        if (!I.lane_is_plastic(cell, lane)) continue;
+        double m = 0.0;
+        for (unsigned q = 0; q < I.n_q; ++q) m = std::max(m, I.state(cell, q, lane)[7]);
+        damage[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()] = m;
+      }
+    out.add_data_vector(damage, "core_damage", DataOut<dim>::type_cell_data);
   }
   out.build_patches(I.mapping, I.spec.degree);
   DataOutBase::VtkFlags flags;

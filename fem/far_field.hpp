@@ -2,8 +2,8 @@
 // The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
 // two elements through its thickness, the core a homogenised orthotropic solid), total
 // Lagrangian (every quantity refers to the undeformed mesh), optionally J2 plasticity in the
-// isotropic layers (fem/j2_plasticity.hpp) and capped out-of-plane stresses in a yielding core
-// (fem/core_yield.hpp), explicit central differences with a lumped mass, and
+// isotropic layers (fem/j2_plasticity.hpp) and capped out-of-plane stresses in a yielding core,
+// dropped where its walls tear in a failing one (fem/core_yield.hpp), explicit central differences with a lumped mass, and
 // matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
 // callers see nodes as plain arrays.
 //
@@ -138,15 +138,19 @@ class FarField {
   bool plastic() const;
   double max_equivalent_plastic_strain() const;
   double max_core_plastic_strain() const;
+  // The volume of a failing core whose walls are torn (damage D >= 1): each core cell's volume
+  // times the fraction of its quadrature points failed, in m^3; 0 without a failing core.
+  double core_failed_volume() const;
   // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha, the
-  // accumulated plastic strain in a yielding core) and the plastic work, for checkpoints; empty
+  // accumulated plastic strain in a yielding core, and a failing core's damage) and the plastic
+  // work, for checkpoints; empty
   // when no layer is plastic.
   std::vector<std::pair<std::string, std::span<double>>> plastic_state();
 
   std::size_t bytes() const;
   // The mesh and the current displacement and velocity as a VTU file for ParaView (with plastic
   // layers also each cell's largest equivalent plastic strain, or in a yielding core its
-  // accumulated plastic strain).
+  // accumulated plastic strain; with a failing core each cell's largest damage, `core_damage`).
   void write_vtu(const std::string& path) const;
   // A ParaView collection (.pvd) of VTU files: (time, file relative to the .pvd) per entry.
   static void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

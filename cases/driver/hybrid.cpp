@@ -16,11 +16,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// `plastic`: the material's Johnson-Cook hardening, for J2 facesheets or a yielding core's walls
-// (the scene checked it has one).
-coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body, bool plastic = false) {
+// `plastic`: the material's Johnson-Cook hardening, for J2 facesheets or a yielding core's walls;
+// `failing`: its Johnson-Cook damage, for a failing core's walls (the scene checked it has them).
+coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body, bool plastic = false, bool failing = false) {
   const auto& m = s.materials[s.bodies[body].material].models;
-  return {m.youngs_modulus, m.poisson_ratio, m.density, plastic ? m.johnson_cook : std::nullopt};
+  return {m.youngs_modulus, m.poisson_ratio, m.density, plastic ? m.johnson_cook : std::nullopt,
+          failing ? m.damage : std::nullopt};
 }
 
 // The body index of part `part` (0 front, 1 core, 2 rear) of panel `panel`.
@@ -59,7 +60,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   panel.upper = {f.extent[2], f.extent[3]};
   coupling::PanelFarFieldSpec spec;
   spec.front = solid(scene, panel_body(scene, f.panel, 0), f.plastic_faces);
-  spec.core_wall = solid(scene, panel_body(scene, f.panel, 1), f.yielding_core);
+  spec.core_wall = solid(scene, panel_body(scene, f.panel, 1), f.yielding_core, f.failing_core);
   spec.rear = solid(scene, panel_body(scene, f.panel, 2), f.plastic_faces);
   spec.zone = f.zone;
   spec.band_elements = f.band_elements;
@@ -69,8 +70,10 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   spec.face_elements = f.face_elements;
   spec.finite_strain = f.finite_strain;
   spec.yielding_core = f.yielding_core;
+  spec.failing_core = f.failing_core;
   plastic_faces_ = f.plastic_faces;
   yielding_core_ = f.yielding_core;
+  failing_core_ = f.failing_core;
   const mpm::GridGeometry grid = grid_geometry(scene);
   far_field_ = std::make_unique<fem::FarField>(coupling::panel_far_field_mesh(panel, spec, grid), 1);
   const auto x = far_field_->reference_positions();
@@ -90,7 +93,8 @@ std::string Hybrid::describe() const {
                      "conditions; stable step {:.4g} s; {:.1f} MB",
                      far_field_->node_count(), far_field_->cell_count(),
                      far_field_->finite_strain() ? ", finite strain" : "",
-                     plastic_faces_ ? ", J2 facesheets" : "", yielding_core_ ? ", yielding core" : "",
+                     plastic_faces_ ? ", J2 facesheets" : "",
+                     failing_core_ ? ", failing core" : yielding_core_ ? ", yielding core" : "",
                      coupling_->tied_node_count(),
                      coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),
                      far_field_->bytes() / 1e6);

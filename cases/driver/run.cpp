@@ -381,7 +381,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     const double alpha = hybrid->far_field().max_equivalent_plastic_strain();
     fmt::print("  far field: largest plastic strain {:.4g}{}, plastic work {:.6g} J\n", alpha,
                scene.far_field->yielding_core
-                   ? fmt::format(" (core: {:.4g})", hybrid->far_field().max_core_plastic_strain())
+                   ? fmt::format(" (core: {:.4g}{})", hybrid->far_field().max_core_plastic_strain(),
+                                 scene.far_field->failing_core
+                                     ? fmt::format(", {:.4g} mm^3 torn", 1e9 * hybrid->far_field().core_failed_volume())
+                                     : std::string())
                    : std::string(),
                hybrid->far_field().plastic_work());
     // Beyond a few percent the damage has reached the zone's edge, which the far field cannot tear
@@ -449,6 +452,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       summary.insert("far_field_max_plastic_strain", hybrid->far_field().max_equivalent_plastic_strain());
       if (scene.far_field->yielding_core)
         summary.insert("far_field_max_core_plastic_strain", hybrid->far_field().max_core_plastic_strain());
+      if (scene.far_field->failing_core)
+        summary.insert("far_field_core_failed_volume", hybrid->far_field().core_failed_volume());
       summary.insert("far_field_plastic_work", hybrid->far_field().plastic_work());
     }
   }

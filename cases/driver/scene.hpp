@@ -131,7 +131,8 @@ struct FarFieldSettings {
   bool clamped_edges = false;
   bool plastic_faces = false;  // plasticity = "j2": the facesheets yield (their Johnson-Cook A, B, n)
   bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
-  bool yielding_core = false;  // core = "yielding": its out-of-plane stresses capped (walls' Johnson-Cook A)
+  bool yielding_core = false;  // core = "yielding" or "failing": its out-of-plane stresses capped (walls' Johnson-Cook A)
+  bool failing_core = false;   // core = "failing": and dropped to zero where the walls' Johnson-Cook damage reaches 1
 };
 
 // [contact]: the impactor's bodies (indices into Scene::bodies) and the friction coefficient.

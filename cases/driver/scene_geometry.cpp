@@ -204,22 +204,28 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.clamped_edges = text(t, "edges") == "clamped";
   f.plastic_faces = text(t, "plasticity") == "j2";
   f.finite_strain = text(t, "kinematics") == "finite";
-  f.yielding_core = text(t, "core") == "yielding";
+  f.failing_core = text(t, "core") == "failing";
+  f.yielding_core = f.failing_core || text(t, "core") == "yielding";
   // J2 facesheets and a yielding core take their materials' Johnson-Cook strength (hardening, or
-  // the walls' yield stress A). Front and rear often share a material: one error for it.
+  // the walls' yield stress A), a failing core its walls' Johnson-Cook damage too. Front and rear
+  // often share a material: one error for it.
   std::size_t reported = s.materials.size();
   for (const auto& b : s.bodies) {
     const auto* part = std::get_if<PanelPart>(&b.shape);
     if (!part || part->panel != f.panel || b.material >= s.materials.size()) continue;
     const bool core = part->part == PanelPart::core;
     const MaterialSettings& m = s.materials[b.material];
+    if (core && f.failing_core && !m.models.damage)
+      error("core", fmt::format("\"failing\" tears the core's walls where their Johnson-Cook damage reaches 1; "
+                                "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or core = \"yielding\"",
+                                m.name, b.name, m.damage));
     if (!(core ? f.yielding_core : f.plastic_faces) || m.models.johnson_cook || (!core && b.material == reported))
       continue;
     if (!core) reported = b.material;
     if (core)
-      error("core", fmt::format("\"yielding\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
+      error("core", fmt::format("\"{}\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
                                 "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
-                                m.name, b.name, m.strength));
+                                f.failing_core ? "failing" : "yielding", m.name, b.name, m.strength));
     else
       error("plasticity", fmt::format("\"j2\" hardens the facesheets as their material's Johnson-Cook strength; "
                                       "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or plasticity = \"none\"",

@@ -255,10 +255,11 @@ TableSpec far_field_table() {
       .choice("plasticity", {"none", "j2"}, "none",
               "The far field's facesheets: elastic, or J2 plasticity hardening as their materials' "
               "Johnson-Cook A + B eps_p^n (rate and thermal factors 1); the core: see `core`")
-      .choice("core", {"elastic", "yielding"}, "elastic",
-              "The far field's homogenised core: elastic, or its out-of-plane normal and transverse "
-              "shear stresses capped where its walls yield (their Johnson-Cook A; fem/core_yield.hpp), "
-              "so the facesheets can pull away from a crushed or torn core")
+      .choice("core", {"elastic", "yielding", "failing"}, "elastic",
+              "The far field's homogenised core: elastic; yielding, its out-of-plane normal and "
+              "transverse shear stresses capped where its walls yield (their Johnson-Cook A; "
+              "fem/core_yield.hpp), so the facesheets can pull away from a crushed or torn core; or "
+              "failing, capped and dropped to zero where the walls' Johnson-Cook damage reaches 1")
       .choice("kinematics", {"small", "finite"}, "small",
               "The far field's strain: small (linearised, sigma = C eps) or finite (total Lagrangian "
               "Green-Lagrange strain E, S = C E, P = F S: rotations of any size give no stress)")

@@ -23,8 +23,8 @@ struct StudyPanel {
     panel.lower = {0, 0};
     panel.upper = {30e-3, 30e-3};
     panel.top = 0;
-    spec.front = spec.rear = {75e9, 0.33, 2770, {}};
-    spec.core_wall = {73e9, 0.33, 2680, {}};
+    spec.front = spec.rear = {75e9, 0.33, 2770, {}, {}};
+    spec.core_wall = {73e9, 0.33, 2680, {}, {}};
     spec.zone = {0, 0, 9.2e-3, 9.2e-3};
     grid.origin = {0, 0, -16e-3};
     grid.cell_size = 0.4e-3;

@@ -91,6 +91,10 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   EXPECT_NE(d.message.find("'aluminium' (panel.core) names strength = \"elastic\""), std::string::npos) << d.message;
   d = error_for({"far_field.core=crushable"}, "far_field.core");
   EXPECT_NE(d.message.find("yielding"), std::string::npos) << d.message;
+  // A failing core also tears its walls by their Johnson-Cook damage: strength alone is not enough.
+  d = error_for({"far_field.core=failing", "material.aluminium.library=Al6061", "material.aluminium.strength=johnson-cook"},
+                "far_field.core");
+  EXPECT_NE(d.message.find("'aluminium' (panel.core) names damage = \"none\""), std::string::npos) << d.message;
 }
 
 TEST(SceneFarField, YieldingCoreOnlyWhenNamed) {
@@ -101,7 +105,16 @@ TEST(SceneFarField, YieldingCoreOnlyWhenNamed) {
                               {"far_field.core=yielding", "material.aluminium.library=Al6061",
                                "material.aluminium.strength=johnson-cook"});
   EXPECT_TRUE(s.far_field->yielding_core);
+  EXPECT_FALSE(s.far_field->failing_core);
   EXPECT_FALSE(s.far_field->plastic_faces);
+  EXPECT_FALSE(small.far_field->failing_core);
+  // "failing" is a yielding core whose walls also tear.
+  const Scene f = parse_scene(small_hybrid(), "small_hybrid.toml",
+                              {"far_field.core=failing", "material.aluminium.library=Al6061",
+                               "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
+  EXPECT_TRUE(f.far_field->yielding_core);
+  EXPECT_TRUE(f.far_field->failing_core);
+  EXPECT_EQ(f.resolved["far_field"]["core"].value_or(std::string{}), "failing");
 }
 
 // The far field's elements share the solver's (field 0's) nodes: a part of its panel cannot be on

@@ -2,7 +2,10 @@
 // walls' yield stress, and a block of core strained homogeneously through the matrix-free force,
 // out of plane (uniaxial strain along z) and in transverse shear, loaded past yield and reversed.
 // Each cap is elastic-perfectly plastic, so every stress, plastic strain and the plastic work are
-// exact piecewise-linear functions of the strain: tolerances are round-off (1e-9 relative).
+// exact piecewise-linear functions of the strain: tolerances are round-off (1e-9 relative). A
+// failing core tears where its walls' Johnson-Cook damage reaches 1: its failure strains, and the
+// same blocks loaded past them, against the closed forms (the step the damage crosses 1 in is known
+// in closed form, so these too hold to round-off).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -36,14 +39,28 @@ TEST(CoreYield, CapsAreTheWallsYieldThroughTheModuli) {
   EXPECT_NEAR(doubled.normal, sigma_ys * honeycomb_core_solidity(D, t, true), 1e-12 * doubled.normal);
 }
 
-LayeredMesh core_block(int degree, bool yielding) {
+// Table 4's Al5052 damage: D1 = D2 = 0.13, D3 = -1.50.
+mpm::JohnsonCookDamage al5052_damage() {
+  mpm::JohnsonCookDamage d;
+  d.D1 = 0.13, d.D2 = 0.13, d.D3 = -1.50, d.D4 = 0.011;
+  return d;
+}
+
+CoreYield failing_caps(const Orthotropic& core) {
+  CoreYield caps = honeycomb_core_yield(core, Es, nus, sigma_ys);
+  caps.failure = honeycomb_core_failure(al5052_damage());
+  return caps;
+}
+
+LayeredMesh core_block(int degree, bool yielding, bool failing = false) {
   const Orthotropic core = honeycomb_core(Es, nus, D, t);
   LayeredMesh m;
   m.lower = {0, 0};
   m.x_steps = {0.5 * L, 0.5 * L};
   m.y_steps = {0.5 * L, 0.5 * L};
-  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt,
-               yielding ? std::optional(honeycomb_core_yield(core, Es, nus, sigma_ys)) : std::nullopt}};
+  std::optional<CoreYield> caps;
+  if (yielding) caps = failing ? failing_caps(core) : honeycomb_core_yield(core, Es, nus, sigma_ys);
+  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt, caps}};
   m.degree = degree;
   return m;
 }
@@ -112,9 +129,89 @@ TEST(CoreYield, TransverseShearCapsAtTheWallsShearYield) {
   EXPECT_NEAR(f.plastic_work(), 2 * caps.shear_xz * 2 * gy * V, 1e-9 * caps.shear_xz * gy * V);
 }
 
+// eps_f = D1 + D2 exp(D3 triaxiality) at the reference rate and room temperature (D4 drops out):
+// the walls of a core pulled along z are in uniaxial tension (1/3), pushed in compression (-1/3),
+// sheared in pure shear (0).
+TEST(CoreFailure, StrainsAreTheWallsJohnsonCookDamageByMode) {
+  const CoreFailure f = honeycomb_core_failure(al5052_damage());
+  EXPECT_NEAR(f.tension, 0.13 + 0.13 * std::exp(-0.5), 1e-15);
+  EXPECT_NEAR(f.compression, 0.13 + 0.13 * std::exp(0.5), 1e-15);
+  EXPECT_NEAR(f.shear, 0.26, 1e-15);
+}
+
+// Uniaxial strain along z in steps of de: sigma_zz = C33 e to e_y, Y3 on the plateau while the
+// damage e_p / eps_f(1/3) < 1, then 0 from the step it reaches 1 in, k_f = the first k with
+// k de - e_y >= eps_f, and on through unloading into compression (torn walls carry nothing out of
+// plane; sigma_xx = C13 (e - e_p) with them). At the tear all the work put in, the area under the
+// curve Y3 (e_kf - e_y / 2) V, has been dissipated and nothing is stored.
+TEST(CoreFailure, UniaxialStrainTearsAtTheWallsTensileFailureStrain) {
+  const Orthotropic core = honeycomb_core(Es, nus, D, t);
+  const auto C = stiffness(core);
+  const CoreYield caps = failing_caps(core);
+  const double ey = caps.normal / C[2], ef = caps.failure->tension, V = L * L * L;
+  const double de = (ey + ef) / 20.5;  // the damage reaches 1 in step 21, not at a step's end
+  const int kf = 21;
+  ASSERT_LT(20 * de - ey, ef);
+  ASSERT_GE(kf * de - ey, ef);
+  for (const int degree : {1, 2}) {
+    FarField f(core_block(degree, true, true));
+    for (int k = 1; k <= 30; ++k) {
+      const double e = k * de;
+      test::deform(f, {{{0, 0, 0}, {0, 0, 0}, {0, 0, e}}});
+      const double szz = e <= ey ? C[2] * e : k < kf ? caps.normal : 0.0;
+      const auto sz = traction(f, 2), sx = traction(f, 0);
+      EXPECT_NEAR(sz[2], szz, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
+      EXPECT_NEAR(sx[0], C[4] / C[2] * szz, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
+      if (k == kf) {
+        EXPECT_NEAR(f.plastic_work(), caps.normal * (e - 0.5 * ey) * V, 1e-9 * caps.normal * ef * V);
+        EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.normal * ef * V);
+        EXPECT_NEAR(f.core_failed_volume(), V, 1e-12 * V);
+      }
+      if (k < kf) {
+        EXPECT_EQ(f.core_failed_volume(), 0.0) << "step " << k;
+      }
+    }
+    for (int k = 29; k >= -10; --k) {  // back through zero and 10 steps into compression
+      test::deform(f, {{{0, 0, 0}, {0, 0, 0}, {0, 0, k * de}}});
+      const auto sz = traction(f, 2);
+      EXPECT_NEAR(sz[2], 0.0, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
+      EXPECT_NEAR(traction(f, 0)[0], 0.0, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
+    }
+    EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.normal * ef * V);
+  }
+}
+
+// Transverse shear u_x = gamma z in steps of dg: sigma_xz = G13 gamma to gamma_y, Y13 while the
+// damage gamma_p / (sqrt(3) eps_f(0)) < 1, then 0; sigma_yz stays 0 throughout. Work to the tear:
+// Y13 (gamma_kf - gamma_y / 2) V.
+TEST(CoreFailure, TransverseShearTearsAtTheWallsShearFailureStrain) {
+  const Orthotropic core = honeycomb_core(Es, nus, D, t);
+  const CoreYield caps = failing_caps(core);
+  const double gy = caps.shear_xz / core.G13, gf = std::sqrt(3.0) * caps.failure->shear, V = L * L * L;
+  const double dg = (gy + gf) / 12.5;
+  const int kf = 13;
+  FarField f(core_block(2, true, true));
+  for (int k = 1; k <= 16; ++k) {
+    const double g = k * dg;
+    test::deform(f, {{{0, 0, g}, {0, 0, 0}, {0, 0, 0}}});
+    const double sxz = g <= gy ? core.G13 * g : k < kf ? caps.shear_xz : 0.0;
+    const auto sz = traction(f, 2);
+    EXPECT_NEAR(sz[0], sxz, 1e-9 * caps.shear_xz) << "step " << k;
+    EXPECT_NEAR(sz[1], 0.0, 1e-9 * caps.shear_xz) << "step " << k;
+    if (k == kf) {
+      EXPECT_NEAR(f.plastic_work(), caps.shear_xz * (g - 0.5 * gy) * V, 1e-9 * caps.shear_xz * gf * V);
+      EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.shear_xz * gf * V);
+    }
+  }
+  // Torn: the other shear carries nothing either.
+  test::deform(f, {{{0, 0, 16 * dg}, {0, 0, dg}, {0, 0, 0}}});
+  EXPECT_NEAR(traction(f, 2)[1], 0.0, 1e-9 * caps.shear_xz);
+}
+
 // An elastic core keeps no state; a layer may not name both models.
 TEST(CoreYield, OnlyWhenNamedAndNotWithJ2) {
   EXPECT_FALSE(FarField(core_block(1, false)).plastic());
+  EXPECT_EQ(FarField(core_block(1, true)).core_failed_volume(), 0.0);  // a yielding core keeps no damage
   LayeredMesh both = core_block(1, true);
   both.layers[0].elasticity = isotropic(test::E, test::nu);
   both.layers[0].plasticity = test::al6061();
