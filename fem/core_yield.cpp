@@ -22,20 +22,19 @@ namespace {
 
 // Torn walls: sigma_zz, sigma_yz and sigma_xz of `r` to zero, the strain they stood on to the
 // plastic strain, and the elastic energy that releases, 1/2 sigma : d eps_p (the stress after is
-// zero in these components), to the work.
+// zero in these components), to the work. The accumulated strain keeps the walls' plastic strain
+// up to the tear: what a torn core takes after is not the walls'.
 void release(CoreYieldUpdate& r, const std::array<double, 9>& C) {
   const double szz = r.stress[2], d = szz / C[2];
   r.stress[0] -= C[4] * d;
   r.stress[1] -= C[5] * d;
   r.stress[2] = 0.0;
   r.plastic_strain[2] += d;
-  r.accumulated += std::abs(d);
   r.plastic_work += 0.5 * szz * d;
   for (const auto& [k, modulus] : {std::pair{3, C[6]}, std::pair{4, C[7]}}) {
     const double tau = r.stress[k], dgamma = tau / modulus;
     r.stress[k] = 0.0;
     r.plastic_strain[k] += 0.5 * dgamma;
-    r.accumulated += std::abs(dgamma);
     r.plastic_work += 0.5 * tau * dgamma;
   }
 }

@@ -66,7 +66,7 @@ CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modul
 struct CoreYieldUpdate {
   Sym stress{};
   Sym plastic_strain{};  // tensor shears, as Sym
-  double accumulated = 0.0;  // sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz| so far
+  double accumulated = 0.0;  // sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz| so far (to a tear)
   double damage = 0.0;       // D of a failing core (>= 1: failed); 0 otherwise
   double plastic_work = 0.0;  // J/m^3 over the step
 };

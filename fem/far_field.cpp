@@ -754,28 +754,25 @@ void FarField::write_vtu(const std::string& path) const {
       dim, DataComponentInterpretation::component_is_part_of_vector);
   out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
   out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
-  Vector<double> alpha;  // per cell: the largest alpha at its quadrature points
-  if (I.any_plastic()) {
-    alpha.reinit(I.triangulation.n_active_cells());
+  // Per cell the largest value of state slot `k` at its quadrature points (0 in elastic cells).
+  auto cell_max = [&](int k) {
+    Vector<double> m(I.triangulation.n_active_cells());
     for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
       for (unsigned lane = 0; lane < Impl::W; ++lane) {
         if (!I.lane_is_plastic(cell, lane)) continue;
-        double m = 0.0;
-        for (unsigned q = 0; q < I.n_q; ++q) m = std::max(m, I.state(cell, q, lane)[6]);
-        alpha[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()] = m;
+        double& v = m[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()];
+        for (unsigned q = 0; q < I.n_q; ++q) v = std::max(v, I.state(cell, q, lane)[k]);
       }
+    return m;
+  };
+  // DataOut keeps references: the vectors live to the end of the function.
+  Vector<double> alpha, damage;
+  if (I.any_plastic()) {
+    alpha = cell_max(6);  // alpha, or a yielding core's accumulated strain
     out.add_data_vector(alpha, "equivalent_plastic_strain", DataOut<dim>::type_cell_data);
   }
-  Vector<double> damage;  // a failing core: per cell the largest D at its quadrature points
   if (I.state_size == 8) {
-    damage.reinit(I.triangulation.n_active_cells());
-    for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
-      for (unsigned lane = 0; lane < Impl::W; ++lane) {
-        if (!I.lane_is_plastic(cell, lane)) continue;
-        double m = 0.0;
-        for (unsigned q = 0; q < I.n_q; ++q) m = std::max(m, I.state(cell, q, lane)[7]);
-        damage[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()] = m;
-      }
+    damage = cell_max(7);  // a failing core's damage D
     out.add_data_vector(damage, "core_damage", DataOut<dim>::type_cell_data);
   }
   out.build_patches(I.mapping, I.spec.degree);
