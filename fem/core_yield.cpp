@@ -20,22 +20,25 @@ CoreFailure honeycomb_core_failure(const mpm::JohnsonCookDamage& walls) {
 
 namespace {
 
-// Torn walls: sigma_zz, sigma_yz and sigma_xz of `r` to zero, the strain they stood on to the
-// plastic strain, and the elastic energy that releases, 1/2 sigma : d eps_p (the stress after is
-// zero in these components), to the work. The accumulated strain keeps the walls' plastic strain
-// up to the tear: what a torn core takes after is not the walls'.
-void release(CoreYieldUpdate& r, const std::array<double, 9>& C) {
+// Torn walls: sigma_zz, sigma_yz and sigma_xz of `r` to zero and the strain they stood on to the
+// plastic strain. In the step of the tear the elastic energy that releases, 1/2 sigma : d eps_p
+// (sigma the capped stress, zero after), is dissipated; in later steps nothing is: the torn point
+// exerts no force, so the strain increment of its elastic predictor never held energy, and
+// booking it would create energy (1/2 C d eps^2 a step). The accumulated strain keeps the walls'
+// plastic strain up to the tear: what a torn core takes after is not the walls'.
+void release(CoreYieldUpdate& r, const std::array<double, 9>& C, bool tearing) {
+  const double book = tearing ? 0.5 : 0.0;
   const double szz = r.stress[2], d = szz / C[2];
   r.stress[0] -= C[4] * d;
   r.stress[1] -= C[5] * d;
   r.stress[2] = 0.0;
   r.plastic_strain[2] += d;
-  r.plastic_work += 0.5 * szz * d;
+  r.plastic_work += book * szz * d;
   for (const auto& [k, modulus] : {std::pair{3, C[6]}, std::pair{4, C[7]}}) {
     const double tau = r.stress[k], dgamma = tau / modulus;
     r.stress[k] = 0.0;
     r.plastic_strain[k] += 0.5 * dgamma;
-    r.plastic_work += 0.5 * tau * dgamma;
+    r.plastic_work += book * tau * dgamma;
   }
 }
 
@@ -45,7 +48,7 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
                                   double damage, const std::array<double, 9>& C, const CoreYield& caps) {
   CoreYieldUpdate r{trial_stress, plastic_strain, accumulated, damage, 0.0};
   if (caps.failure && damage >= 1.0) {  // torn before this step: carries nothing out of plane
-    release(r, C);
+    release(r, C, false);
     return r;
   }
   // sigma_zz (Voigt 2) against +-Y3; C = {C11, C22, C33, C12, C13, C23, C44, C55, C66}.
@@ -76,7 +79,7 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
     r.plastic_work += s.cap * std::abs(dgamma);
     if (caps.failure) r.damage += std::abs(dgamma) / (std::sqrt(3.0) * caps.failure->shear);
   }
-  if (caps.failure && r.damage >= 1.0) release(r, C);  // torn in this step
+  if (caps.failure && r.damage >= 1.0) release(r, C, true);  // torn in this step
   return r;
 }
 
