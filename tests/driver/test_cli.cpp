@@ -259,9 +259,10 @@ TEST(Cli, HybridOutputIsBitwiseIdenticalForOneAndTwoThreadsAndOnResume) {
 
 // The small hybrid with `sets` run on 2 threads into scratch(name), on 1 thread, and stopped at
 // step 37 then resumed on 1 thread: all three write the same bytes (snapshots, energy.csv, the
-// far field's VTU files), and the energy balance holds to the 0.5% of the elastic hybrid above.
-// Returns the two-thread run's directory.
-fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets, const std::string& name) {
+// far field's VTU files), and the energy balance holds to `bound` (the 0.5% of the elastic hybrid
+// above unless said). Returns the two-thread run's directory.
+fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets, const std::string& name,
+                                                    double bound = 0.005) {
   const fs::path two = scratch(name), one = scratch(name + "_1"), parts = scratch(name + "_parts");
   EXPECT_EQ(run("run " + hybrid + " --out " + two.string() + " --threads 2" + sets), 0);
   EXPECT_EQ(run("run " + hybrid + " --out " + one.string() + " --threads 1" + sets), 0);
@@ -276,7 +277,7 @@ fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets, con
   const auto rows = csv_rows(two / "energy.csv");
   EXPECT_FALSE(rows.empty());
   if (!rows.empty()) {
-    EXPECT_LT(std::abs(rows.back()[7] / rows.front()[7] - 1.0), 0.005)
+    EXPECT_LT(std::abs(rows.back()[7] / rows.front()[7] - 1.0), bound)
         << "energy balance " << rows.back()[7] / rows.front()[7] - 1.0;
   }
   return two;
@@ -316,6 +317,31 @@ TEST(Cli, HybridWithFiniteStrainBalancesEnergyAndResumesBitwise) {
   ASSERT_FALSE(rows.empty());
   EXPECT_NEAR(rows.back()[10] / rows.front()[10], 1.0, 1e-12);  // momentum_z
   EXPECT_GT(summary_number(two, "far_field_max_plastic_strain"), 1e-3);
+}
+
+// The same hybrid with a failing core (far_field.core = "failing"), the ball at 2 km/s so that
+// the far field's core tears beside the zone: its damage is in the checkpoints, so a resumed run
+// and a one-thread run repeat the two-thread run byte for byte. The panel is Al5052 with
+// Johnson-Cook strength and damage (the core's walls need both), which fails in the MPM zone
+// too: this coarse scene then balances to about +2% whatever the core (elastic +1.95%, yielding
+// +2.21%), so the bound is 3%, and the failing core's own share is checked against the yielding
+// core's: within 0.1% (measured 0.01%; booking a torn point's elastic predictor each step, a
+// force it never exerts, added 0.5%).
+TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
+  const std::string al5052 = " --set far_field.plasticity=j2 --set material.aluminium.library=Al5052"
+                             " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
+                             " --set body.ball.velocity=[0,0,-2000]";
+  const fs::path two = expect_hybrid_balances_and_repeats_bitwise(al5052 + " --set far_field.core=failing",
+                                                                 "hybrid_failing", 0.03);
+  EXPECT_GT(summary_number(two, "far_field_core_failed_volume"), 1e-9);  // 1 mm^3: the core tore
+  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("core_damage"), std::string::npos);
+  const fs::path yielding = scratch("hybrid_yielding");
+  ASSERT_EQ(run("run " + hybrid + " --out " + yielding.string() + " --threads 2" + al5052 +
+                " --set far_field.core=yielding"), 0);
+  const auto a = csv_rows(two / "energy.csv"), b = csv_rows(yielding / "energy.csv");
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  EXPECT_NEAR(a.back()[7] / a.front()[7], b.back()[7] / b.front()[7], 1e-3);
 }
 
 // A body in free flight: every particle keeps its velocity and moves with the grid velocity,
