@@ -20,6 +20,26 @@ CoreFailure honeycomb_core_failure(const mpm::JohnsonCookDamage& walls) {
 
 namespace {
 
+// sigma_zz of `r` moved to `target` by plastic strain along z, d eps_p,zz = (sigma_zz - target) /
+// C33, which also moves sigma_xx and sigma_yy by C13 and C23 times it; returns d eps_p,zz.
+double return_normal(CoreYieldUpdate& r, const std::array<double, 9>& C, double target) {
+  const double d = (r.stress[2] - target) / C[2];
+  r.stress[0] -= C[4] * d;
+  r.stress[1] -= C[5] * d;
+  r.stress[2] = target;
+  r.plastic_strain[2] += d;
+  return d;
+}
+
+// Shear `k` of `r` (Voigt 3 = yz, 4 = xz) moved to `target`: d gamma_p = (tau - target) / G in
+// engineering strain, half of it in the tensor component; returns d gamma_p.
+double return_shear(CoreYieldUpdate& r, int k, double modulus, double target) {
+  const double dgamma = (r.stress[k] - target) / modulus;
+  r.stress[k] = target;
+  r.plastic_strain[k] += 0.5 * dgamma;
+  return dgamma;
+}
+
 // Torn walls: sigma_zz, sigma_yz and sigma_xz of `r` to zero and the strain they stood on to the
 // plastic strain. In the step of the tear the elastic energy that releases, 1/2 sigma : d eps_p
 // (sigma the capped stress, zero after), is dissipated; in later steps nothing is: the torn point
@@ -28,17 +48,11 @@ namespace {
 // plastic strain up to the tear: what a torn core takes after is not the walls'.
 void release(CoreYieldUpdate& r, const std::array<double, 9>& C, bool tearing) {
   const double book = tearing ? 0.5 : 0.0;
-  const double szz = r.stress[2], d = szz / C[2];
-  r.stress[0] -= C[4] * d;
-  r.stress[1] -= C[5] * d;
-  r.stress[2] = 0.0;
-  r.plastic_strain[2] += d;
-  r.plastic_work += book * szz * d;
+  const double szz = r.stress[2];
+  r.plastic_work += book * szz * return_normal(r, C, 0.0);
   for (const auto& [k, modulus] : {std::pair{3, C[6]}, std::pair{4, C[7]}}) {
-    const double tau = r.stress[k], dgamma = tau / modulus;
-    r.stress[k] = 0.0;
-    r.plastic_strain[k] += 0.5 * dgamma;
-    r.plastic_work += book * tau * dgamma;
+    const double tau = r.stress[k];
+    r.plastic_work += book * tau * return_shear(r, k, modulus, 0.0);
   }
 }
 
@@ -54,12 +68,7 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
   // sigma_zz (Voigt 2) against +-Y3; C = {C11, C22, C33, C12, C13, C23, C44, C55, C66}.
   const double szz = trial_stress[2];
   if (std::abs(szz) > caps.normal) {
-    const double cap = std::copysign(caps.normal, szz);
-    const double d = (szz - cap) / C[2];
-    r.stress[0] -= C[4] * d;
-    r.stress[1] -= C[5] * d;
-    r.stress[2] = cap;
-    r.plastic_strain[2] += d;
+    const double d = return_normal(r, C, std::copysign(caps.normal, szz));
     r.accumulated += std::abs(d);
     r.plastic_work += caps.normal * std::abs(d);
     if (caps.failure) r.damage += std::abs(d) / (d > 0 ? caps.failure->tension : caps.failure->compression);
@@ -72,9 +81,7 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
   for (const auto& s : shears) {
     const double tau = trial_stress[s.k];
     if (std::abs(tau) <= s.cap) continue;
-    const double dgamma = (tau - std::copysign(s.cap, tau)) / s.modulus;
-    r.stress[s.k] = std::copysign(s.cap, tau);
-    r.plastic_strain[s.k] += 0.5 * dgamma;
+    const double dgamma = return_shear(r, s.k, s.modulus, std::copysign(s.cap, tau));
     r.accumulated += std::abs(dgamma);
     r.plastic_work += s.cap * std::abs(dgamma);
     if (caps.failure) r.damage += std::abs(dgamma) / (std::sqrt(3.0) * caps.failure->shear);

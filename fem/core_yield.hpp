@@ -33,7 +33,8 @@
 // there (the strain goes to eps_p), as the MPM's failed wall points carry no tension or shear.
 // Crushed walls that compact again (densification, at strains near 1 - rho*/rho_s) are not
 // modelled. The elastic energy the drop releases, 1/2 (sigma_before + sigma_after) : d eps_p
-// exactly for a linear solid, is booked as work, so the energy balance holds through failure.
+// exactly for a linear solid, is booked as work in the step of the tear, and nothing after (a torn
+// point exerts no force), so the energy balance holds through failure.
 #include <array>
 #include <optional>
 

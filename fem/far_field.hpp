@@ -3,8 +3,8 @@
 // two elements through its thickness, the core a homogenised orthotropic solid), total
 // Lagrangian (every quantity refers to the undeformed mesh), optionally J2 plasticity in the
 // isotropic layers (fem/j2_plasticity.hpp) and capped out-of-plane stresses in a yielding core,
-// dropped where its walls tear in a failing one (fem/core_yield.hpp), explicit central differences with a lumped mass, and
-// matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
+// dropped where its walls tear in a failing one (fem/core_yield.hpp), explicit central
+// differences with a lumped mass, and matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
 // callers see nodes as plain arrays.
 //
 // Kinematics, with H = grad_X u the displacement gradient on the undeformed mesh:
@@ -143,8 +143,7 @@ class FarField {
   double core_failed_volume() const;
   // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha, the
   // accumulated plastic strain in a yielding core, and a failing core's damage) and the plastic
-  // work, for checkpoints; empty
-  // when no layer is plastic.
+  // work, for checkpoints; empty when no layer is plastic.
   std::vector<std::pair<std::string, std::span<double>>> plastic_state();
 
   std::size_t bytes() const;
