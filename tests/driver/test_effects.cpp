@@ -37,7 +37,9 @@ Effects run_with(const std::vector<std::string>& models, const std::vector<std::
   Effects e;
   for (const auto& f : solver->particles().real_fields()) e.fields.insert(f.name);
   for (const auto& p : solver->timer().entries()) e.phases.insert(p.name);
-  const auto dir = std::filesystem::path(testing::TempDir()) / "hvi_effects";
+  // One folder per test: ctest runs the tests of this file side by side.
+  const auto dir = std::filesystem::path(testing::TempDir()) /
+                   ("hvi_effects_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::remove_all(dir);
   mpm::io::SnapshotWriter writer(dir);
   writer.write(*solver);
