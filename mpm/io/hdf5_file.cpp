@@ -94,6 +94,17 @@ Hdf5File::~Hdf5File() {
   if (file_ >= 0) H5Fclose(file_);
 }
 
+void Hdf5File::close() {
+  if (file_ < 0) return;
+  const hid_t file = file_;
+  file_ = -1;
+  if (H5Fflush(file, H5F_SCOPE_LOCAL) < 0) {
+    H5Fclose(file);
+    fail("flush file", path_);
+  }
+  check_status(H5Fclose(file), "close file", path_);
+}
+
 void Hdf5File::write(const std::string& name, const double* data, std::size_t rows,
                      std::size_t columns) {
   write_dataset(file_, path_, name, H5T_NATIVE_DOUBLE, data, rows, columns);

@@ -21,6 +21,9 @@ class Hdf5File {
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
+  // Flushes and closes a written file; throws if its data did not all reach the disk (the
+  // destructor cannot report that, so a writer calls this before it trusts the file).
+  void close();
 
   // Dataset of rows x columns values (columns = 1 writes a 1-D dataset).
   void write(const std::string& name, const double* data, std::size_t rows, std::size_t columns);

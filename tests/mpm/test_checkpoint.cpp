@@ -1,7 +1,10 @@
 // Restart and output (mpm/io): a run resumed from a checkpoint ends bitwise identical to the
 // uninterrupted run; snapshots hold the particles in id order, the XDMF index points at datasets
 // that exist, and the same state always gives the same bytes.
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <csignal>
 #include <fstream>
 #include <iterator>
 #include <numeric>
@@ -119,6 +122,55 @@ TEST(Restart, SceneRemovesParticlesAroundTheCheckpoint) {
   while (s->step_count() < kSteps) s->step();
   EXPECT_GT(before, 0);
   EXPECT_GT(s->removed().particles, before);
+}
+
+// Lowers this process's file-size limit while it lives: a write past it fails with EFBIG, as a
+// write to a full disk fails with ENOSPC, part-way through a file (SIGXFSZ is ignored meanwhile).
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit lower = saved_;
+    lower.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lower);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, handler_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  rlimit saved_{};
+  void (*handler_)(int) = SIG_DFL;
+};
+
+// A disk that fills during a long run: the checkpoint write that fails keeps the last checkpoint
+// to the byte (the run resumes from it) and leaves no partial file holding space; a snapshot that
+// fails leaves no truncated file for a measurement to read, nor an index entry pointing at it.
+TEST(Restart, FailedWritesLeaveNoPartialFiles) {
+  const Threads threads(1);  // ~1900 particles
+  TempDir dir("failed_writes");
+  const fs::path file = dir.path() / "checkpoint.h5";
+  auto s = small_scene(settings_for(ShapeFunction::linear));
+  io::write_checkpoint(file, *s, {});
+  const std::string last = read_file(file);
+  ASSERT_GT(last.size(), 100000u);
+  io::SnapshotWriter writer(dir.path());
+  writer.write(*s);
+  const std::string index = read_file(dir.path() / "particles.xmf");
+  s->step();
+  {
+    const FileSizeLimit limit(last.size() / 2);  // the first datasets fit, a later one does not
+    EXPECT_THROW(io::write_checkpoint(file, *s, {}), io::Hdf5Error);
+    EXPECT_THROW(writer.write(*s), io::Hdf5Error);
+  }
+  EXPECT_EQ(read_file(file), last);
+  EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path() / "snapshots"), fs::directory_iterator()), 1);
+  EXPECT_EQ(read_file(dir.path() / "particles.xmf"), index);
 }
 
 // The HDF references of an XDMF index: (dimensions, file, dataset) per DataItem.
