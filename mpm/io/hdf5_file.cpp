@@ -78,6 +78,12 @@ void write_attr(hid_t file, const std::string& path, const std::string& name, hi
 }  // namespace
 
 Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
+  // A file whose close failed (its last writes refused by a full disk) stays in HDF5's table, and
+  // the library's exit handler (1.10) crashes closing it again; every file here is closed by its
+  // owner, so the process exits without that handler and keeps its exit code. Must precede the
+  // library's first call.
+  static const bool no_exit_handler = H5dont_atexit() >= 0;
+  (void)no_exit_handler;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr dumps
   if (mode == Mode::create) {
     Handle fcpl{H5Pcreate(H5P_FILE_CREATE), H5Pclose};
