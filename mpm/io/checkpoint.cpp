@@ -21,9 +21,9 @@ const std::string field_order = "field_order";   // attribute: the fields' names
 
 void write_checkpoint(const fs::path& path, const Solver& solver, const CheckpointExtras& extras) {
   // Written aside and renamed over the last checkpoint only once complete: a write that fails
-  // (a full disk) leaves the last checkpoint to resume from, and no partial file holding space.
+  // (a full disk) leaves the last checkpoint to resume from (Hdf5File removes the partial one).
   const fs::path tmp = path.string() + ".tmp";
-  try {
+  {
     Hdf5File file(tmp.string(), Hdf5File::Mode::create);
     const Particles& P = solver.particles();
     const std::size_t n = P.size();
@@ -54,10 +54,6 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
     for (auto* c : solver.couplings())
       for (const auto& [name, data] : c->state()) file.write(coupled_prefix + name, data.data(), data.size(), 1);
     file.close();
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
   }
   fs::rename(tmp, path);
 }

@@ -1,5 +1,8 @@
 #include "mpm/io/hdf5_file.hpp"
 
+#include <exception>
+#include <filesystem>
+
 #include <hdf5.h>
 
 namespace hvi::mpm::io {
@@ -77,7 +80,8 @@ void write_attr(hid_t file, const std::string& path, const std::string& name, hi
 
 }  // namespace
 
-Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
+Hdf5File::Hdf5File(const std::string& path, Mode mode)
+    : path_(path), created_(mode == Mode::create), exceptions_at_open_(std::uncaught_exceptions()) {
   // A file whose close failed (its last writes refused by a full disk) stays in HDF5's table, and
   // the library's exit handler (1.10) crashes closing it again; every file here is closed by its
   // owner, so the process exits without that handler and keeps its exit code. Must precede the
@@ -98,6 +102,10 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
 
 Hdf5File::~Hdf5File() {
   if (file_ >= 0) H5Fclose(file_);
+  if (created_ && std::uncaught_exceptions() > exceptions_at_open_) {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
 }
 
 void Hdf5File::close() {

@@ -22,7 +22,9 @@ class Hdf5File {
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
   // Flushes and closes a written file; throws if its data did not all reach the disk (the
-  // destructor cannot report that, so a writer calls this before it trusts the file).
+  // destructor cannot report that, so a writer calls this before it trusts the file). A file
+  // opened to write that an exception unwinds (a refused write, a failed close) is removed, so
+  // no truncated file is left to read and no space is held on a full disk.
   void close();
 
   // Dataset of rows x columns values (columns = 1 writes a 1-D dataset).
@@ -49,6 +51,8 @@ class Hdf5File {
  private:
   std::string path_;
   std::int64_t file_ = -1;  // hid_t
+  bool created_ = false;       // opened to write: removed if an exception unwinds it
+  int exceptions_at_open_ = 0;  // std::uncaught_exceptions() when opened
 };
 
 }  // namespace hvi::mpm::io

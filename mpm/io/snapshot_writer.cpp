@@ -91,27 +91,14 @@ std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const s
   return attributes;
 }
 
-// As write_datasets, but a write that fails (a full disk) removes the partial file, so that no
-// truncated snapshot is left for a resume or a measurement to read.
-std::vector<std::pair<std::string, std::pair<int, bool>>> write_whole(const std::filesystem::path& path,
-                                                                      const Solver& solver) {
-  try {
-    return write_datasets(path, solver);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(path, ignored);
-    throw;
-  }
-}
-
 }  // namespace
 
-void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) { write_whole(path, solver); }
+void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) { write_datasets(path, solver); }
 
 void SnapshotWriter::write(const Solver& solver) {
   Entry entry{file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};
   fs::create_directories(directory_ / "snapshots");
-  for (const auto& [name, shape] : write_whole(directory_ / entry.file, solver))
+  for (const auto& [name, shape] : write_datasets(directory_ / entry.file, solver))
     entry.attributes.push_back({name, shape.first, shape.second});
   entries_.push_back(std::move(entry));
   ++next_index_;
