@@ -27,9 +27,9 @@ hvi::fem::LayeredMesh study_panel_quarter(int degree, bool plastic, bool finite_
   const double rho_core = 2680 * honeycomb_core_solidity(3e-3, 0.05e-3);
   std::optional<hvi::mpm::JohnsonCookStrength> j2;
   if (plastic) j2 = hvi::mpm::JohnsonCookStrength{.A = 324e6, .B = 114e6, .n = 0.42};  // Al6061, Table 4
-  m.layers = {{"rear", -15.2e-3, -14.7e-3, 1, face, 2770, j2, {}},
-              {"core", -14.7e-3, -0.5e-3, 4, core, rho_core, {}, {}},
-              {"front", -0.5e-3, 0, 1, face, 2770, j2, {}}};
+  m.layers = {{"rear", -15.2e-3, -14.7e-3, 1, face, 2770, j2, {}, {}},
+              {"core", -14.7e-3, -0.5e-3, 4, core, rho_core, {}, {}, {}},
+              {"front", -0.5e-3, 0, 1, face, 2770, j2, {}, {}}};
   m.degree = degree;
   m.finite_strain = finite_strain;
   return m;

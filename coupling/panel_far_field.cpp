@@ -71,6 +71,8 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
     core_yield = fem::honeycomb_core_yield(core_moduli, spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio,
                                            spec.core_wall.hardening->A);
   }
+  if ((spec.front.damage && !spec.front.hardening) || (spec.rear.damage && !spec.rear.hardening))
+    throw std::invalid_argument("far field: failing facesheets are J2 facesheets and need their hardening");
   if (spec.failing_core) {
     if (!core_yield || !spec.core_wall.damage)
       throw std::invalid_argument("far field: a failing core yields and needs its walls' Johnson-Cook damage");
@@ -78,11 +80,11 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   }
   m.layers = {
       {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density,
-       spec.rear.hardening, std::nullopt},
+       spec.rear.hardening, std::nullopt, spec.rear.damage},
       {"core", core.lower[2], core.upper[2], spec.core_elements, core_moduli, spec.core_wall.density * solidity,
-       std::nullopt, core_yield},
+       std::nullopt, core_yield, std::nullopt},
       {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density,
-       spec.front.hardening, std::nullopt}};
+       spec.front.hardening, std::nullopt, spec.front.damage}};
   return m;
 }
 

@@ -122,7 +122,7 @@ struct FarField::Impl {
   // Plasticity, kept only when a layer names it. lane_layer[W cell + lane] is the layer of each
   // lane of each cell batch (-1: an empty lane); a batch with a plastic lane has a slot in
   // `plastic` of n_q * W * state_size values: per quadrature point and lane eps_p (Voigt) and
-  // alpha, and with a failing core an eighth, its damage D (0 in the other lanes).
+  // alpha, and with a failing core or facesheets an eighth, their damage D (0 in the other lanes).
   static constexpr unsigned W = VA::size();
   int state_size = 7;
   std::vector<int> lane_layer, plastic_slot;
@@ -204,9 +204,14 @@ struct FarField::Impl {
         J2State old;
         std::copy(st, st + 6, old.plastic_strain.begin());
         old.alpha = st[6];
-        // C[8] = C66 = mu of the isotropic layer.
-        const J2Update r = j2_return(trial, old, C[8][lane], *L.plasticity);
+        // C[8] = C66 = mu of the isotropic layer, (C11 + 2 C12) / 3 its bulk modulus K.
+        const double mu = C[8][lane];
+        if (L.failure) old.damage = st[7];
+        const J2Update r = L.failure ? j2_return(trial, old, mu, (C[0][lane] + 2.0 * C[3][lane]) / 3.0,
+                                                 *L.plasticity, *L.failure)
+                                     : j2_return(trial, old, mu, *L.plasticity);
         stress = r.stress, plastic_strain = r.state.plastic_strain, accumulated = r.state.alpha, work = r.plastic_work;
+        if (L.failure) st[7] = r.state.damage;
       }
       sigma[0][0][lane] = stress[0];
       sigma[1][1][lane] = stress[1];
@@ -405,6 +410,8 @@ void FarField::Impl::build_mesh() {
       throw std::invalid_argument("far field: layer '" + L.name + "' is plastic but not isotropic (J2 needs an isotropic layer)");
     if (L.plasticity && L.core_yield)
       throw std::invalid_argument("far field: layer '" + L.name + "' names both J2 plasticity and core yield");
+    if (L.failure && !L.plasticity)
+      throw std::invalid_argument("far field: layer '" + L.name + "' names failure without J2 plasticity (its damage grows with eps_p)");
   }
   Table<dim, types::material_id> ids(spec.x_steps.size(), spec.y_steps.size(), z_steps.size());
   double x = spec.lower[0];
@@ -549,7 +556,7 @@ void FarField::Impl::setup_plasticity() {
   }
   state_size = 7;
   for (const Layer& L : spec.layers)
-    if (L.core_yield && L.core_yield->failure) state_size = 8;
+    if ((L.core_yield && L.core_yield->failure) || L.failure) state_size = 8;
   plastic.assign(static_cast<std::size_t>(slots) * n_q * W * state_size, 0.0);
   if (slots == 0) {  // nothing plastic: keep no per-batch tables either
     lane_layer = {};
@@ -704,24 +711,28 @@ double max_accumulated(const Impl& I, bool core) {
     }
   return m;
 }
-}  // namespace
 
-double FarField::max_equivalent_plastic_strain() const { return max_accumulated(*impl_, false); }
-double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_, true); }
-
-double FarField::core_failed_volume() const {
-  const auto& I = *impl_;
+// The volume of the failing core's (`core`) or facesheets' torn quadrature points (damage, state
+// slot 7, >= 1): each cell's volume times the fraction of its points torn.
+template <class Impl>
+double failed_volume(const Impl& I, bool core) {
   if (I.state_size < 8) return 0.0;
   double v = 0.0;
   for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
     for (unsigned lane = 0; lane < Impl::W; ++lane) {
-      if (!I.lane_is_plastic(cell, lane) || !I.lane_layer_spec(cell, lane)->core_yield) continue;
+      if (!I.lane_is_plastic(cell, lane) || I.lane_layer_spec(cell, lane)->core_yield.has_value() != core) continue;
       unsigned failed = 0;
       for (unsigned q = 0; q < I.n_q; ++q) failed += I.state(cell, q, lane)[7] >= 1.0;
       v += I.matrix_free.get_cell_iterator(cell, lane)->measure() * failed / I.n_q;
     }
   return v;
 }
+}  // namespace
+
+double FarField::max_equivalent_plastic_strain() const { return max_accumulated(*impl_, false); }
+double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_, true); }
+double FarField::core_failed_volume() const { return failed_volume(*impl_, true); }
+double FarField::facesheet_failed_volume() const { return failed_volume(*impl_, false); }
 
 std::vector<std::pair<std::string, std::span<double>>> FarField::plastic_state() {
   if (!impl_->any_plastic()) return {};
@@ -754,26 +765,37 @@ void FarField::write_vtu(const std::string& path) const {
       dim, DataComponentInterpretation::component_is_part_of_vector);
   out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
   out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
-  // Per cell the largest value of state slot `k` at its quadrature points (0 in elastic cells).
-  auto cell_max = [&](int k) {
+  // Per cell the largest value of state slot `k` at its quadrature points (0 in elastic cells;
+  // `only` 1: the core's cells only, 0: the others', -1: all).
+  auto cell_max = [&](int k, int only = -1) {
     Vector<double> m(I.triangulation.n_active_cells());
     for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
       for (unsigned lane = 0; lane < Impl::W; ++lane) {
         if (!I.lane_is_plastic(cell, lane)) continue;
+        if (only >= 0 && I.lane_layer_spec(cell, lane)->core_yield.has_value() != (only == 1)) continue;
         double& v = m[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()];
         for (unsigned q = 0; q < I.n_q; ++q) v = std::max(v, I.state(cell, q, lane)[k]);
       }
     return m;
   };
   // DataOut keeps references: the vectors live to the end of the function.
-  Vector<double> alpha, damage;
+  Vector<double> alpha, core_damage, facesheet_damage;
   if (I.any_plastic()) {
     alpha = cell_max(6);  // alpha, or a yielding core's accumulated strain
     out.add_data_vector(alpha, "equivalent_plastic_strain", DataOut<dim>::type_cell_data);
   }
-  if (I.state_size == 8) {
-    damage = cell_max(7);  // a failing core's damage D
-    out.add_data_vector(damage, "core_damage", DataOut<dim>::type_cell_data);
+  bool failing_core = false, failing_faces = false;
+  for (const Layer& L : I.spec.layers) {
+    failing_core = failing_core || (L.core_yield && L.core_yield->failure);
+    failing_faces = failing_faces || L.failure;
+  }
+  if (failing_core) {
+    core_damage = cell_max(7, 1);  // a failing core's damage D
+    out.add_data_vector(core_damage, "core_damage", DataOut<dim>::type_cell_data);
+  }
+  if (failing_faces) {
+    facesheet_damage = cell_max(7, 0);
+    out.add_data_vector(facesheet_damage, "facesheet_damage", DataOut<dim>::type_cell_data);
   }
   out.build_patches(I.mapping, I.spec.degree);
   DataOutBase::VtkFlags flags;

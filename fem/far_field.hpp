@@ -2,7 +2,7 @@
 // The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
 // two elements through its thickness, the core a homogenised orthotropic solid), total
 // Lagrangian (every quantity refers to the undeformed mesh), optionally J2 plasticity in the
-// isotropic layers (fem/j2_plasticity.hpp) and capped out-of-plane stresses in a yielding core,
+// isotropic layers (fem/j2_plasticity.hpp), torn where their damage reaches 1 in failing ones, and capped out-of-plane stresses in a yielding core,
 // dropped where its walls tear in a failing one (fem/core_yield.hpp), explicit central
 // differences with a lumped mass, and matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
 // callers see nodes as plain arrays.
@@ -34,6 +34,7 @@
 #include "fem/core_yield.hpp"
 #include "fem/orthotropic.hpp"
 #include "mpm/materials/johnson_cook.hpp"
+#include "mpm/materials/johnson_cook_damage.hpp"
 
 namespace hvi::fem {
 
@@ -50,6 +51,9 @@ struct Layer {
   // A honeycomb core's out-of-plane normal and transverse shear stresses capped where its walls
   // yield (fem/core_yield.hpp); none: elastic. A layer takes this or `plasticity`, not both.
   std::optional<CoreYield> core_yield;
+  // With `plasticity`: the layer tears where this Johnson-Cook damage reaches 1 (fem/j2_plasticity.hpp);
+  // none: it yields without limit.
+  std::optional<mpm::JohnsonCookDamage> failure;
 };
 
 struct LayeredMesh {
@@ -138,18 +142,21 @@ class FarField {
   bool plastic() const;
   double max_equivalent_plastic_strain() const;
   double max_core_plastic_strain() const;
-  // The volume of a failing core whose walls are torn (damage D >= 1): each core cell's volume
-  // times the fraction of its quadrature points failed, in m^3; 0 without a failing core.
+  // The volume of a failing core whose walls are torn (damage D >= 1), and of failing
+  // facesheets torn: each such cell's volume times the fraction of its quadrature points failed,
+  // in m^3; 0 without a failing core (facesheets).
   double core_failed_volume() const;
+  double facesheet_failed_volume() const;
   // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha, the
-  // accumulated plastic strain in a yielding core, and a failing core's damage) and the plastic
+  // accumulated plastic strain in a yielding core, and a failing layer's damage) and the plastic
   // work, for checkpoints; empty when no layer is plastic.
   std::vector<std::pair<std::string, std::span<double>>> plastic_state();
 
   std::size_t bytes() const;
   // The mesh and the current displacement and velocity as a VTU file for ParaView (with plastic
   // layers also each cell's largest equivalent plastic strain, or in a yielding core its
-  // accumulated plastic strain; with a failing core each cell's largest damage, `core_damage`).
+  // accumulated plastic strain; each cell's largest damage, `core_damage` with a failing core and
+  // `facesheet_damage` with failing facesheets).
   void write_vtu(const std::string& path) const;
   // A ParaView collection (.pvd) of VTU files: (time, file relative to the .pvd) per entry.
   static void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

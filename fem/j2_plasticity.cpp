@@ -1,5 +1,6 @@
 #include "fem/j2_plasticity.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hvi::fem {
@@ -20,6 +21,49 @@ J2Update j2_return(const Sym& trial, const J2State& old, double mu, const mpm::J
   }
   r.state.alpha += dgamma;
   r.plastic_work = dgamma * scale * q_trial;
+  return r;
+}
+
+namespace {
+
+// A torn point: `r`'s stress to K min(tr eps, 0) I, the strain it stood on to eps_p; with
+// `tearing` the elastic energy released, 1/2 sigma_before : d eps_p, added to the step's work.
+// tr eps = tr sigma / 3K + tr eps_p.
+void tear(J2Update& r, double mu, double K, bool tearing) {
+  auto& ep = r.state.plastic_strain;
+  const double p = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
+  const double kept = K * std::min(p / K + ep[0] + ep[1] + ep[2], 0.0);
+  Sym d{};
+  for (int i = 0; i < 6; ++i) d[i] = (r.stress[i] - (i < 3 ? p : 0.0)) / (2.0 * mu);
+  for (int i = 0; i < 3; ++i) d[i] += (p - kept) / (3.0 * K);
+  if (tearing) {
+    double released = 0.0;
+    for (int i = 0; i < 6; ++i) released += (i < 3 ? 1.0 : 2.0) * r.stress[i] * d[i];
+    r.plastic_work += 0.5 * released;
+  }
+  for (int i = 0; i < 6; ++i) {
+    ep[i] += d[i];
+    r.stress[i] = i < 3 ? kept : 0.0;
+  }
+}
+
+}  // namespace
+
+J2Update j2_return(const Sym& trial, const J2State& old, double mu, double K, const mpm::JohnsonCookStrength& hardening,
+                   const mpm::JohnsonCookDamage& damage) {
+  if (old.damage >= 1.0) {  // torn before this step
+    J2Update r{trial, old, 0.0};
+    tear(r, mu, K, false);
+    return r;
+  }
+  J2Update r = j2_return(trial, old, mu, hardening);
+  const double dgamma = r.state.alpha - old.alpha;
+  if (dgamma <= 0.0) return r;
+  // Triaxiality at the returned stress, whose q is the yield stress sigma_y(alpha_n+1) > 0.
+  const double p = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
+  const double q = r.plastic_work / dgamma;
+  r.state.damage += dgamma / damage.failure_strain(p / q, 0.0, 0.0);
+  if (r.state.damage >= 1.0) tear(r, mu, K, true);
   return r;
 }
 

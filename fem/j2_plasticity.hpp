@@ -15,9 +15,25 @@
 //   eps_p,n+1 = eps_p,n + 3/2 dgamma s_trial / q_trial,  alpha_n+1 = alpha_n + dgamma
 //   sigma = p_trial I + (1 - 3 mu dgamma / q_trial) s_trial
 // The plastic work of the step per unit volume is sigma_n+1 : d eps_p = dgamma q_n+1.
+//
+// Failing facesheets (far_field.plasticity = "failing") add the Johnson-Cook damage of their
+// material, the paper's eqs. (2)-(3) with the rate and thermal factors at 1 (as the hardening):
+//   D += dgamma / eps_f(eta),  eps_f(eta) = D1 + D2 exp(D3 eta),  eta = p / q_n+1
+// at the returned stress. Where D reaches 1 the point is torn and keeps, as the MPM's failed
+// points do (mpm/materials/hydro_material.hpp), only the pressure of its volume when compressed
+// below the reference one:
+//   sigma -> p_kept I,  p_kept = K min(tr eps, 0),  d eps_p = s / (2 mu) + (p - p_kept) / (3 K) I,
+// the strain the dropped stress stood on moved into eps_p (so a torn point pulled open and pushed
+// back carries pressure again only past its reference volume, as an MPM point's EOS does). The
+// elastic energy the drop releases, 1/2 (sigma_before + sigma_after) : d eps_p (exact for a linear
+// solid, and sigma_after : d eps_p = p_kept (p - p_kept) / K = 0), is booked as plastic work in the
+// step of the tear. In later steps the same drop books nothing: the deviatoric and tensile parts
+// of a torn point's trial stress come from the strain increment of the elastic predictor, which
+// never held energy. A torn point's alpha stays what it had taken at the tear.
 #include <array>
 
 #include "mpm/materials/johnson_cook.hpp"
+#include "mpm/materials/johnson_cook_damage.hpp"
 
 namespace hvi::fem {
 
@@ -27,6 +43,7 @@ using Sym = std::array<double, 6>;
 struct J2State {
   Sym plastic_strain{};
   double alpha = 0.0;  // equivalent plastic strain, sqrt(2/3 eps_p : eps_p) for radial flow
+  double damage = 0.0;  // D of failing facesheets (>= 1: torn); 0 otherwise
 };
 
 struct J2Update {
@@ -37,5 +54,9 @@ struct J2Update {
 
 // `trial_stress`: C (eps - eps_p,n) of the isotropic material with shear modulus mu.
 J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, const mpm::JohnsonCookStrength& hardening);
+
+// The same for failing facesheets, with bulk modulus K and Johnson-Cook damage `damage`.
+J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, double K,
+                   const mpm::JohnsonCookStrength& hardening, const mpm::JohnsonCookDamage& damage);
 
 }  // namespace hvi::fem

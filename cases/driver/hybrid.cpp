@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // `plastic`: the material's Johnson-Cook hardening, for J2 facesheets or a yielding core's walls;
-// `failing`: its Johnson-Cook damage, for a failing core's walls (the scene checked it has them).
+// `failing`: its Johnson-Cook damage, for failing facesheets or a failing core's walls (the scene
+// checked it has them).
 coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body, bool plastic = false, bool failing = false) {
   const auto& m = s.materials[s.bodies[body].material].models;
   return {m.youngs_modulus, m.poisson_ratio, m.density, plastic ? m.johnson_cook : std::nullopt,
@@ -59,9 +60,9 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   panel.lower = {f.extent[0], f.extent[1]};
   panel.upper = {f.extent[2], f.extent[3]};
   coupling::PanelFarFieldSpec spec;
-  spec.front = solid(scene, panel_body(scene, f.panel, 0), f.plastic_faces);
+  spec.front = solid(scene, panel_body(scene, f.panel, 0), f.plastic_faces, f.failing_faces);
   spec.core_wall = solid(scene, panel_body(scene, f.panel, 1), f.yielding_core, f.failing_core);
-  spec.rear = solid(scene, panel_body(scene, f.panel, 2), f.plastic_faces);
+  spec.rear = solid(scene, panel_body(scene, f.panel, 2), f.plastic_faces, f.failing_faces);
   spec.zone = f.zone;
   spec.band_elements = f.band_elements;
   spec.ratio = f.growth;
@@ -72,6 +73,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
   spec.yielding_core = f.yielding_core;
   spec.failing_core = f.failing_core;
   plastic_faces_ = f.plastic_faces;
+  failing_faces_ = f.failing_faces;
   yielding_core_ = f.yielding_core;
   failing_core_ = f.failing_core;
   const mpm::GridGeometry grid = grid_geometry(scene);
@@ -93,7 +95,7 @@ std::string Hybrid::describe() const {
                      "conditions; stable step {:.4g} s; {:.1f} MB",
                      far_field_->node_count(), far_field_->cell_count(),
                      far_field_->finite_strain() ? ", finite strain" : "",
-                     plastic_faces_ ? ", J2 facesheets" : "",
+                     failing_faces_ ? ", failing J2 facesheets" : plastic_faces_ ? ", J2 facesheets" : "",
                      failing_core_ ? ", failing core" : yielding_core_ ? ", yielding core" : "",
                      coupling_->tied_node_count(),
                      coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),

@@ -38,7 +38,7 @@ class Hybrid {
   std::unique_ptr<coupling::FarFieldCoupling> coupling_;
   std::vector<std::pair<double, std::string>> snapshots_;  // (time, file)
   std::size_t fixed_nodes_ = 0;
-  bool plastic_faces_ = false, yielding_core_ = false, failing_core_ = false;
+  bool plastic_faces_ = false, failing_faces_ = false, yielding_core_ = false, failing_core_ = false;
 };
 
 // The scene's hybrid, or null when it names no far field.

@@ -379,7 +379,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
   if (hybrid && hybrid->far_field().plastic()) {
     const double alpha = hybrid->far_field().max_equivalent_plastic_strain();
-    fmt::print("  far field: largest plastic strain {:.4g}{}, plastic work {:.6g} J\n", alpha,
+    fmt::print("  far field: largest plastic strain {:.4g}{}{}, plastic work {:.6g} J\n", alpha,
+               scene.far_field->failing_faces
+                   ? fmt::format(" (facesheets: {:.4g} mm^3 torn)", 1e9 * hybrid->far_field().facesheet_failed_volume())
+                   : std::string(),
                scene.far_field->yielding_core
                    ? fmt::format(" (core: {:.4g}{})", hybrid->far_field().max_core_plastic_strain(),
                                  scene.far_field->failing_core
@@ -454,6 +457,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
         summary.insert("far_field_max_core_plastic_strain", hybrid->far_field().max_core_plastic_strain());
       if (scene.far_field->failing_core)
         summary.insert("far_field_core_failed_volume", hybrid->far_field().core_failed_volume());
+      if (scene.far_field->failing_faces)
+        summary.insert("far_field_facesheet_failed_volume", hybrid->far_field().facesheet_failed_volume());
       summary.insert("far_field_plastic_work", hybrid->far_field().plastic_work());
     }
   }

@@ -129,7 +129,8 @@ struct FarFieldSettings {
   int band_elements = 2, core_elements = 8, face_elements = 1;
   double growth = 1.25, max_element = 0.0, safety = 0.9;
   bool clamped_edges = false;
-  bool plastic_faces = false;  // plasticity = "j2": the facesheets yield (their Johnson-Cook A, B, n)
+  bool plastic_faces = false;  // plasticity = "j2" or "failing": the facesheets yield (their Johnson-Cook A, B, n)
+  bool failing_faces = false;  // plasticity = "failing": and tear where their Johnson-Cook damage reaches 1
   bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
   bool yielding_core = false;  // core = "yielding" or "failing": its out-of-plane stresses capped (walls' Johnson-Cook A)
   bool failing_core = false;   // core = "failing": and dropped to zero where the walls' Johnson-Cook damage reaches 1

@@ -202,7 +202,8 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.growth = number(t, "growth");
   f.safety = number(t, "safety");
   f.clamped_edges = text(t, "edges") == "clamped";
-  f.plastic_faces = text(t, "plasticity") == "j2";
+  f.failing_faces = text(t, "plasticity") == "failing";
+  f.plastic_faces = f.failing_faces || text(t, "plasticity") == "j2";
   f.finite_strain = text(t, "kinematics") == "finite";
   f.failing_core = text(t, "core") == "failing";
   f.yielding_core = f.failing_core || text(t, "core") == "yielding";
@@ -219,6 +220,10 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
       error("core", fmt::format("\"failing\" tears the core's walls where their Johnson-Cook damage reaches 1; "
                                 "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or core = \"yielding\"",
                                 m.name, b.name, m.damage));
+    if (!core && f.failing_faces && !m.models.damage)
+      error("plasticity", fmt::format("\"failing\" tears the facesheets where their Johnson-Cook damage reaches 1; "
+                                      "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or plasticity = \"j2\"",
+                                      m.name, b.name, m.damage));
     if (!(core ? f.yielding_core : f.plastic_faces) || m.models.johnson_cook || (!core && b.material == reported))
       continue;
     if (!core) reported = b.material;
@@ -227,9 +232,9 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
                                 "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
                                 f.failing_core ? "failing" : "yielding", m.name, b.name, m.strength));
     else
-      error("plasticity", fmt::format("\"j2\" hardens the facesheets as their material's Johnson-Cook strength; "
+      error("plasticity", fmt::format("\"{}\" hardens the facesheets as their material's Johnson-Cook strength; "
                                       "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or plasticity = \"none\"",
-                                      m.name, b.name, m.strength));
+                                      f.failing_faces ? "failing" : "j2", m.name, b.name, m.strength));
   }
   const double h = s.grid.cell_size;
   f.max_element = t["max_element"].value<double>().value_or(6.0 * std::min(p.front_thickness, p.rear_thickness));

@@ -237,7 +237,7 @@ TableSpec far_field_table() {
               .doc = "The hybrid: the named [[panel]] is material points inside `zone` and finite "
                      "elements (fem/: facesheets of solid bricks, the core a homogenised orthotropic "
                      "solid, elastic with the materials' E, nu and density, small or finite strain, optionally J2 "
-                     "facesheets) over the rest "
+                     "facesheets that may tear and a core that may yield or tear) over the rest "
                      "of its in-plane extent (cut by its clip). Both share the grid nodes of a band "
                      "around the zone and advance with one time step. Absent: nothing of fem/ is built."};
   t.string_required("panel", "The [[panel]] whose far field this is")
@@ -252,9 +252,10 @@ TableSpec far_field_table() {
                "Elements through the core height (4 deflected 17% less than pure MPM 20 mm from "
                "an impact, 8 deflected 11% less; README)")
       .integer("face_elements", closed(1, 8), 1, "Elements through each facesheet")
-      .choice("plasticity", {"none", "j2"}, "none",
-              "The far field's facesheets: elastic, or J2 plasticity hardening as their materials' "
-              "Johnson-Cook A + B eps_p^n (rate and thermal factors 1); the core: see `core`")
+      .choice("plasticity", {"none", "j2", "failing"}, "none",
+              "The far field's facesheets: elastic; J2 plasticity hardening as their materials' "
+              "Johnson-Cook A + B eps_p^n (rate and thermal factors 1); or failing, J2 and torn (only "
+              "compressive pressure kept) where their Johnson-Cook damage reaches 1; the core: see `core`")
       .choice("core", {"elastic", "yielding", "failing"}, "elastic",
               "The far field's homogenised core: elastic; yielding, its out-of-plane normal and "
               "transverse shear stresses capped where its walls yield (their Johnson-Cook A; "

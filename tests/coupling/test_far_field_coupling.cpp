@@ -50,7 +50,7 @@ std::unique_ptr<fem::FarField> bar_far_field() {
   m.lower = {mpm_cells * h, 0};
   m.x_steps.assign(fe_cells, h);
   m.y_steps.assign(2, h);
-  m.layers = {{"bar", 0, 2 * h, 2, fem::isotropic(E, nu), rho, {}, {}}};
+  m.layers = {{"bar", 0, 2 * h, 2, fem::isotropic(E, nu), rho, {}, {}, {}}};
   m.degree = 1;
   auto f = std::make_unique<fem::FarField>(m);
   const auto x = f->reference_positions();

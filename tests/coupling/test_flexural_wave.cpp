@@ -39,7 +39,7 @@ std::unique_ptr<fem::FarField> strip(double x_lower, int cells) {
   m.lower = {x_lower, 0};
   m.x_steps.assign(cells, h);
   m.y_steps.assign(1, h);
-  m.layers = {{"plate", 0, thick * h, thick, fem::isotropic(E, nu), rho, {}, {}}};
+  m.layers = {{"plate", 0, thick * h, thick, fem::isotropic(E, nu), rho, {}, {}, {}}};
   m.degree = 1;
   auto f = std::make_unique<fem::FarField>(m);
   for (std::size_t a = 0; a < f->node_count(); ++a) f->fix(a, 0b010);

@@ -319,22 +319,24 @@ TEST(Cli, HybridWithFiniteStrainBalancesEnergyAndResumesBitwise) {
   EXPECT_GT(summary_number(two, "far_field_max_plastic_strain"), 1e-3);
 }
 
-// The same hybrid with a failing core (far_field.core = "failing"), the ball at 2 km/s so that
-// the far field's core tears beside the zone: its damage is in the checkpoints, so a resumed run
-// and a one-thread run repeat the two-thread run byte for byte. The panel is Al5052 with
-// Johnson-Cook strength and damage (the core's walls need both), which fails in the MPM zone
-// too: this coarse scene then balances to about +2% whatever the core (elastic +1.95%, yielding
-// +2.21%), so the bound is 3%, and the failing core's own share is checked against the yielding
-// core's: within 0.1% (measured 0.01%; booking a torn point's elastic predictor each step, a
-// force it never exerts, added 0.5%).
+// The same hybrid with a failing core (far_field.core = "failing") and failing facesheets
+// (far_field.plasticity = "failing"), the ball at 2 km/s so that the far field's core tears beside
+// the zone: its damage is in the checkpoints, so a resumed run and a one-thread run repeat the
+// two-thread run byte for byte. The panel is Al5052 with Johnson-Cook strength and damage (the
+// core's walls need both), which fails in the MPM zone too: this coarse scene then balances to
+// about +2% whatever the core (elastic +1.95%, yielding +2.21%), so the bound is 3%, and the
+// failing core's own share is checked against the yielding core's: within 0.1% (measured 0.01%;
+// booking a torn point's elastic predictor each step, a force it never exerts, added 0.5%).
 TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
-  const std::string al5052 = " --set far_field.plasticity=j2 --set material.aluminium.library=Al5052"
+  const std::string al5052 = " --set far_field.plasticity=failing --set material.aluminium.library=Al5052"
                              " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
                              " --set body.ball.velocity=[0,0,-2000]";
   const fs::path two = expect_hybrid_balances_and_repeats_bitwise(al5052 + " --set far_field.core=failing",
                                                                  "hybrid_failing", 0.03);
   EXPECT_GT(summary_number(two, "far_field_core_failed_volume"), 1e-9);  // 1 mm^3: the core tore
+  EXPECT_GT(summary_number(two, "far_field_facesheet_failed_volume"), 0.0);  // and a facesheet
   EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("core_damage"), std::string::npos);
+  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("facesheet_damage"), std::string::npos);
   const fs::path yielding = scratch("hybrid_yielding");
   ASSERT_EQ(run("run " + hybrid + " --out " + yielding.string() + " --threads 2" + al5052 +
                 " --set far_field.core=yielding"), 0);

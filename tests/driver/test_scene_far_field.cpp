@@ -95,6 +95,28 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   d = error_for({"far_field.core=failing", "material.aluminium.library=Al6061", "material.aluminium.strength=johnson-cook"},
                 "far_field.core");
   EXPECT_NE(d.message.find("'aluminium' (panel.core) names damage = \"none\""), std::string::npos) << d.message;
+  // Failing facesheets harden (strength) and tear (damage) as their material's Johnson-Cook models.
+  d = error_for({"far_field.plasticity=failing", "material.aluminium.library=Al6061",
+                 "material.aluminium.strength=johnson-cook"},
+                "far_field.plasticity");
+  EXPECT_NE(d.message.find("\"failing\" tears the facesheets"), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("'aluminium' (panel.front) names damage = \"none\""), std::string::npos) << d.message;
+}
+
+TEST(SceneFarField, FailingFacesheetsOnlyWhenNamed) {
+  const Scene j2 = parse_scene(small_hybrid(), "small_hybrid.toml",
+                               {"far_field.plasticity=j2", "material.aluminium.library=Al6061",
+                                "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
+  EXPECT_TRUE(j2.far_field->plastic_faces);
+  EXPECT_FALSE(j2.far_field->failing_faces);
+  // "failing" facesheets are J2 facesheets that also tear.
+  const Scene f = parse_scene(small_hybrid(), "small_hybrid.toml",
+                              {"far_field.plasticity=failing", "material.aluminium.library=Al6061",
+                               "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
+  EXPECT_TRUE(f.far_field->plastic_faces);
+  EXPECT_TRUE(f.far_field->failing_faces);
+  EXPECT_FALSE(f.far_field->yielding_core);
+  EXPECT_EQ(f.resolved["far_field"]["plasticity"].value_or(std::string{}), "failing");
 }
 
 TEST(SceneFarField, YieldingCoreOnlyWhenNamed) {

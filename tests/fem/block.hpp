@@ -1,7 +1,8 @@
 #pragma once
 // A solid block of the far field for the tests that strain it homogeneously: one isotropic layer
-// of Al6061 (the paper's Table 4: E, nu, density; Johnson-Cook A, B, n for J2), L = 1 mm on each
-// side, 2 x 2 x 2 elements, and the nodal forces' sums over a face of the block.
+// of Al6061 (the paper's Table 4: E, nu, density; Johnson-Cook A, B, n for J2; D1-D3 for failing
+// J2), L = 1 mm on each side, 2 x 2 x 2 elements, and the nodal forces' sums over a face of the
+// block; the closed form of J2 in uniaxial strain.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -23,12 +24,21 @@ inline mpm::JohnsonCookStrength al6061() {
   return jc;
 }
 
+// Table 4's Al6061 damage, its rate and thermal terms left out (the far field's are 1).
+inline mpm::JohnsonCookDamage al6061_damage() {
+  mpm::JohnsonCookDamage d;
+  d.D1 = -0.77;
+  d.D2 = 1.45;
+  d.D3 = -0.47;
+  return d;
+}
+
 inline LayeredMesh block(int degree, bool plastic, bool finite_strain = false) {
   LayeredMesh m;
   m.lower = {0, 0};
   m.x_steps = {0.5 * L, 0.5 * L};
   m.y_steps = {0.5 * L, 0.5 * L};
-  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt, std::nullopt}};
+  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt, std::nullopt, std::nullopt}};
   m.degree = degree;
   m.finite_strain = finite_strain;
   return m;
@@ -54,5 +64,25 @@ inline std::array<double, 3> face_force(const std::vector<double>& force, const 
       for (int i = 0; i < 3; ++i) sum[i] += force[3 * a + i];
   return sum;
 }
+
+// Uniaxial strain e along x with J2 and radial flow: eps_p = alpha diag(1, -1/2, -1/2), so
+//   s_xx = 2 mu (2e/3 - alpha),  s_yy = s_zz = 2 mu (alpha/2 - e/3),  q = 2 mu |e - 3/2 alpha|,
+// and on loading the consistency condition 2 mu (e - 3/2 alpha) = A + B alpha^n fixes alpha
+// (solved here by bisection, independently of the code's Newton iteration).
+struct Uniaxial {
+  double mu, K;
+  mpm::JohnsonCookStrength jc;
+  double alpha_on_loading(double e) const {
+    if (2 * mu * e <= jc.A) return 0.0;
+    double lo = 0, hi = e / 1.5;
+    for (int i = 0; i < 200; ++i) {
+      const double a = 0.5 * (lo + hi);
+      (2 * mu * (e - 1.5 * a) > jc.hardening(a) ? lo : hi) = a;
+    }
+    return 0.5 * (lo + hi);
+  }
+  double sxx(double e, double alpha) const { return K * e + 2 * mu * (2 * e / 3 - alpha); }
+  double syy(double e, double alpha) const { return K * e + 2 * mu * (alpha / 2 - e / 3); }
+};
 
 }  // namespace hvi::fem::test

@@ -60,7 +60,7 @@ LayeredMesh core_block(int degree, bool yielding, bool failing = false) {
   m.y_steps = {0.5 * L, 0.5 * L};
   std::optional<CoreYield> caps;
   if (yielding) caps = failing ? failing_caps(core) : honeycomb_core_yield(core, Es, nus, sigma_ys);
-  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt, caps}};
+  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt, caps, std::nullopt}};
   m.degree = degree;
   return m;
 }

@@ -32,9 +32,9 @@ LayeredMesh sandwich_mesh(double a, double t, double c, double D, double t_hc, i
   m.x_steps = m.y_steps = uniform(a / 2, n);
   const Orthotropic face = isotropic(E_face, nu), core = honeycomb_core(E_wall, nu, D, t_hc);
   const double rho_core = rho_wall * honeycomb_core_solidity(D, t_hc);
-  m.layers = {{"rear", 0, t, 1, face, rho_face, {}, {}},
-              {"core", t, t + c, 2, core, rho_core, {}, {}},
-              {"front", t + c, 2 * t + c, 1, face, rho_face, {}, {}}};
+  m.layers = {{"rear", 0, t, 1, face, rho_face, {}, {}, {}},
+              {"core", t, t + c, 2, core, rho_core, {}, {}, {}},
+              {"front", t + c, 2 * t + c, 1, face, rho_face, {}, {}, {}}};
   m.degree = degree;
   return m;
 }
@@ -285,7 +285,7 @@ TEST(FarField, ThinPlateBendsWithoutLockingInQ2) {
   for (const int degree : {1, 2}) {
     LayeredMesh m;
     m.x_steps = m.y_steps = uniform(a / 2, degree == 2 ? 4 : 8);
-    m.layers = {{"plate", 0, h, 1, isotropic(E_face, nu), rho_face, {}, {}}};
+    m.layers = {{"plate", 0, h, 1, isotropic(E_face, nu), rho_face, {}, {}, {}}};
     m.degree = degree;
     FarField f(m);
     support_quarter_plate(f, a / 2);

@@ -51,8 +51,8 @@ Matrix rotation(std::array<double, 3> n, double angle) {
 // layer are checked.
 LayeredMesh two_layers(int degree, bool finite_strain) {
   LayeredMesh m = block(degree, false, finite_strain);
-  m.layers = {{"core", 0, 0.5 * L, 1, honeycomb_core(E, nu, 3e-3, 0.05e-3), rho * 0.034, std::nullopt, std::nullopt},
-              {"face", 0.5 * L, L, 1, isotropic(E, nu), rho, std::nullopt, std::nullopt}};
+  m.layers = {{"core", 0, 0.5 * L, 1, honeycomb_core(E, nu, 3e-3, 0.05e-3), rho * 0.034, std::nullopt, std::nullopt, std::nullopt},
+              {"face", 0.5 * L, L, 1, isotropic(E, nu), rho, std::nullopt, std::nullopt, std::nullopt}};
   return m;
 }
 

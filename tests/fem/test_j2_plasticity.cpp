@@ -17,26 +17,6 @@ namespace {
 
 using namespace test;
 
-// Uniaxial strain e along x with J2 and radial flow: eps_p = alpha diag(1, -1/2, -1/2), so
-//   s_xx = 2 mu (2e/3 - alpha),  s_yy = s_zz = 2 mu (alpha/2 - e/3),  q = 2 mu |e - 3/2 alpha|,
-// and on loading the consistency condition 2 mu (e - 3/2 alpha) = A + B alpha^n fixes alpha
-// (solved here by bisection, independently of the code's Newton iteration).
-struct Uniaxial {
-  double mu, K;
-  mpm::JohnsonCookStrength jc;
-  double alpha_on_loading(double e) const {
-    if (2 * mu * e <= jc.A) return 0.0;
-    double lo = 0, hi = e / 1.5;
-    for (int i = 0; i < 200; ++i) {
-      const double a = 0.5 * (lo + hi);
-      (2 * mu * (e - 1.5 * a) > jc.hardening(a) ? lo : hi) = a;
-    }
-    return 0.5 * (lo + hi);
-  }
-  double sxx(double e, double alpha) const { return K * e + 2 * mu * (2 * e / 3 - alpha); }
-  double syy(double e, double alpha) const { return K * e + 2 * mu * (alpha / 2 - e / 3); }
-};
-
 // sigma_xx and sigma_yy read from the internal force: for a homogeneous stress the forces on the
 // nodes of the face x = L add up to -sigma_xx times its area (and likewise for y).
 std::pair<double, double> stresses(FarField& f) {
