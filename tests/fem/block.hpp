@@ -53,6 +53,17 @@ inline void deform(FarField& f, const std::array<std::array<double, 3>, 3>& A, c
       u[3 * a + i] = c[i] + A[i][0] * x[3 * a] + A[i][1] * x[3 * a + 1] + A[i][2] * x[3 * a + 2];
 }
 
+// A block in motion: the nodes at z = 0 fixed, the others at v = (vx, 0, vz) z / L.
+inline void throw_block(FarField& f, double vx, double vz) {
+  const auto x = f.reference_positions();
+  for (std::size_t a = 0; a < f.node_count(); ++a) {
+    const bool base = x[3 * a + 2] < 1e-12 * L;
+    if (base) f.fix(a, 7u);
+    f.velocity()[3 * a] = base ? 0.0 : vx * x[3 * a + 2] / L;
+    f.velocity()[3 * a + 2] = base ? 0.0 : vz * x[3 * a + 2] / L;
+  }
+}
+
 // The internal force summed over the nodes of the reference face X_axis = L: for a homogeneous
 // first Piola-Kirchhoff stress P it is -P N L^2 with N the face's normal, so column `axis` of P
 // is -sum / L^2.

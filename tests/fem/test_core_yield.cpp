@@ -228,13 +228,7 @@ TEST(CoreFailure, EnergyIsConservedThroughTheTearInMotion) {
     m.x_steps = {0.25 * L, 0.25 * L, 0.25 * L, 0.25 * L};
     m.layers[0].elements = 8;
     FarField f(m);
-    const auto x = f.reference_positions();
-    for (std::size_t a = 0; a < f.node_count(); ++a) {
-      const bool base = x[3 * a + 2] < 1e-12 * L;
-      if (base) f.fix(a, 7u);
-      f.velocity()[3 * a] = base ? 0.0 : 400.0 * x[3 * a + 2] / L;
-      f.velocity()[3 * a + 2] = base ? 0.0 : 100.0 * x[3 * a + 2] / L;
-    }
+    test::throw_block(f, 400.0, 100.0);
     const double dt = 0.5 * f.stable_time_step(), E0 = f.kinetic_energy();
     std::vector<double> before(3 * f.node_count()), mean(3 * f.node_count());
     double worst = 0.0;
