@@ -71,8 +71,6 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
     core_yield = fem::honeycomb_core_yield(core_moduli, spec.core_wall.youngs_modulus, spec.core_wall.poisson_ratio,
                                            spec.core_wall.hardening->A);
   }
-  if ((spec.front.damage && !spec.front.hardening) || (spec.rear.damage && !spec.rear.hardening))
-    throw std::invalid_argument("far field: failing facesheets are J2 facesheets and need their hardening");
   if (spec.failing_core) {
     if (!core_yield || !spec.core_wall.damage)
       throw std::invalid_argument("far field: a failing core yields and needs its walls' Johnson-Cook damage");

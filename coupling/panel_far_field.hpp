@@ -22,8 +22,8 @@ struct SolidMaterial {
   // J2 plasticity (facesheets), or for the core's walls the yield stress of a yielding core (its
   // A); none: elastic.
   std::optional<mpm::JohnsonCookStrength> hardening;
-  // For failing facesheets (with `hardening`) or a failing core's walls: their Johnson-Cook damage
-  // (eqs. 2-3); none otherwise.
+  // For failing facesheets (with `hardening`; fem::FarField refuses them without) or a failing
+  // core's walls: their Johnson-Cook damage (eqs. 2-3); none otherwise.
   std::optional<mpm::JohnsonCookDamage> damage;
 };
 
@@ -45,8 +45,7 @@ struct PanelFarFieldSpec {
 };
 
 // Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, a
-// yielding core's walls have no hardening (yield stress), a failing core's no damage, failing
-// facesheets (a facesheet's `damage`) no hardening, or the
+// yielding core's walls have no hardening (yield stress), a failing core's no damage, or the
 // panel has double walls and its cell pattern is not turned by a multiple of 90 degrees (the
 // core's orthotropic axes must be the panel's).
 fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,

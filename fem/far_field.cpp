@@ -766,13 +766,13 @@ void FarField::write_vtu(const std::string& path) const {
   out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
   out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
   // Per cell the largest value of state slot `k` at its quadrature points (0 in elastic cells;
-  // `only` 1: the core's cells only, 0: the others', -1: all).
-  auto cell_max = [&](int k, int only = -1) {
+  // with `core`, only the cells that are (true) or are not (false) a yielding core's).
+  auto cell_max = [&](int k, std::optional<bool> core = std::nullopt) {
     Vector<double> m(I.triangulation.n_active_cells());
     for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
       for (unsigned lane = 0; lane < Impl::W; ++lane) {
         if (!I.lane_is_plastic(cell, lane)) continue;
-        if (only >= 0 && I.lane_layer_spec(cell, lane)->core_yield.has_value() != (only == 1)) continue;
+        if (core && I.lane_layer_spec(cell, lane)->core_yield.has_value() != *core) continue;
         double& v = m[I.matrix_free.get_cell_iterator(cell, lane)->active_cell_index()];
         for (unsigned q = 0; q < I.n_q; ++q) v = std::max(v, I.state(cell, q, lane)[k]);
       }
@@ -790,11 +790,11 @@ void FarField::write_vtu(const std::string& path) const {
     failing_faces = failing_faces || L.failure;
   }
   if (failing_core) {
-    core_damage = cell_max(7, 1);  // a failing core's damage D
+    core_damage = cell_max(7, true);  // a failing core's damage D
     out.add_data_vector(core_damage, "core_damage", DataOut<dim>::type_cell_data);
   }
   if (failing_faces) {
-    facesheet_damage = cell_max(7, 0);
+    facesheet_damage = cell_max(7, false);
     out.add_data_vector(facesheet_damage, "facesheet_damage", DataOut<dim>::type_cell_data);
   }
   out.build_patches(I.mapping, I.spec.degree);
