@@ -257,15 +257,28 @@ def table2(runs, ref_dir):
 
 
 def table5(runs, ref_dir):
-    """Against Table 5: D_f for runs named m<mass>g_v<speed>."""
-    found = {}
+    """Against Table 5: D_f for runs named m<mass>g_v<speed>, and for each label of runs named
+    m<mass>g_v<speed>_<label> (one variant of the study each, such as a cell size:
+    study/front_hole_fine.toml's m10g_v2200_h0141) a table of its own."""
+    variants = {}
     for r in runs:
-        m = re.fullmatch(r"m(\d+)g_v(\d+)", r["run"])
+        m = re.fullmatch(r"m(\d+)g_v(\d+)(?:_(\w+))?", r["run"])
         if m and number(r.get("D_f")) is not None:
+            found = variants.setdefault(m.group(3) or "", {})
             found[(int(m.group(1)), int(m.group(2)))] = number(r["D_f"]) / MM
-    if not found:
+    if not variants:
         return None
     ref = csv_rows(ref_dir / "front_holes.csv")
+    parts = []
+    for label in sorted(variants):
+        if label:
+            parts += [f"Runs `m<g>g_v<m/s>_{label}`:", ""]
+        parts += [table5_variant(variants[label], ref), ""]
+    return "\n".join(parts[:-1])
+
+
+def table5_variant(found, ref):
+    """One Table 5 comparison: found[(mass in g, speed in m/s)] = D_f in mm."""
     speeds = [int(k[1:]) for k in ref[0] if k.startswith("v")]
     lines = ["| m_p (g) | " + " | ".join(f"{v} m/s: paper / hvi" for v in speeds) + " |",
              "|---|" + "---|" * len(speeds)]

@@ -48,6 +48,23 @@ class Table5(unittest.TestCase):
         self.assertIn("10.60 / 11.02 (+4%)", text)
         self.assertIn("mean error -3.0%", text)
 
+    def test_one_table_per_labelled_variant(self):
+        # Runs m<g>g_v<m/s>_<label> (a study's variants, e.g. a cell size) are compared label by
+        # label: 1 g at 4500 m/s on two cell sizes, 5 g at 2200 m/s (16.47 mm) on one.
+        runs = [run("m1g_v4500_h0141", D_f=10.60 * 1.03), run("m5g_v2200_h0141", D_f=16.47 * 0.99),
+                run("m1g_v4500_h0242", D_f=10.60 * 1.10), run("m1g_v4500", D_f=10.60 * 1.04)]
+        text = report.table5(runs, REFERENCE)
+        plain, rest = text.split("Runs `m<g>g_v<m/s>_h0141`:")
+        fine, coarse = rest.split("Runs `m<g>g_v<m/s>_h0242`:")
+        self.assertIn("**1 of 1**", plain)
+        self.assertIn("10.60 / 11.02 (+4%)", plain)
+        self.assertIn("**2 of 2**", fine)
+        self.assertIn("10.60 / 10.92 (+3%)", fine)
+        self.assertIn("16.47 / 16.31 (-1%)", fine)
+        self.assertIn("mean error +1.0%", fine)
+        self.assertIn("**0 of 1**", coarse)
+        self.assertIn("10.60 / 11.66 (+10%)", coarse)
+
 
 class HoleHistory(unittest.TestCase):
     def write(self, root, name, rows):
