@@ -180,7 +180,7 @@ void Solver::particles_to_grid(Scatter what) {
     TransferContext context = transfer_context();
     if (volumetric && what != Scatter::mass_momentum) {
       auto t = timer_.scope("mean stress: node average");
-      context.mean_stress_shift = volumetric->mean_stress_shift(particles_, bins, grid, context).data();
+      context.mean_stress = &volumetric->mean_stress_sums(particles_, bins, grid, context);
     }
     auto t = timer_.scope("particles to grid");
     mpm::particles_to_grid(what, particles_, bins, grid, context);
@@ -241,9 +241,11 @@ void Solver::grid_to_particles(bool remap) {
 
 void Solver::compute_velocity_gradient(NodalVelocity which) {
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, VolumetricAverage* volumetric) {
-    {
+    {  // with the node average, the same pass scatters tr L_p into its sums
       auto t = timer_.scope("velocity gradient");
-      mpm::velocity_gradient(particles_, bins, grid, transfer_context(), which);
+      mpm::velocity_gradient(particles_, bins, grid, transfer_context(), which,
+                             volumetric ? &volumetric->dilatation_sums(particles_) : nullptr,
+                             volumetric ? volumetric->dilatation_values() : nullptr);
     }
     if (volumetric) {
       auto t = timer_.scope("dilatation: node average");

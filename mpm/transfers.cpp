@@ -68,7 +68,7 @@ struct Setup {
   const GridGeometry& g;
   double inv_h;
   const double* half_width;  // 3 per particle, m
-  const double* mean_stress_shift;  // per particle, added to the stress's diagonal in the force
+  const NodeAverageSums* mean_stress;  // gathered into the force scatter; nullptr for none
   // Half-widths of particle p in cells, per axis, in `out`; nullptr for linear shape functions.
   const double* a(std::size_t p, double* out) const {
     if (!half_width) return nullptr;
@@ -76,6 +76,38 @@ struct Setup {
     return out;
   }
 };
+
+// Where a node average keeps its sums for a particle's group at node n: (sum N V a, sum N V) at
+// sums[slot], sums[slot + 1]. Nodes are indexed by their place in the grid's storage.
+struct SumsSlot {
+  const GridNode* base;
+  int groups;
+  std::size_t operator()(const GridNode& n, std::int64_t group) const {
+    return 2 * (static_cast<std::size_t>(&n - base) * groups + static_cast<std::size_t>(group));
+  }
+};
+
+// Zeroed sums for every block of the grid, 64 nodes x groups x 2 values per block.
+void zero_sums(const SparseGrid& grid, int groups, std::vector<double>& sums) {
+  const auto block_values = static_cast<std::int64_t>(SparseGrid::block_size) * groups * 2;
+  const auto blocks = static_cast<std::int64_t>(grid.block_count());
+  sums.resize(static_cast<std::size_t>(blocks * block_values));
+  double* zero = sums.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b) std::fill_n(zero + b * block_values, block_values, 0.0);
+}
+
+// abar_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p) over the nodes of p's stencil.
+template <class Shape, class Node>
+double gather_average(const NodeStencil<Shape>& st, Node* const* blocks, double inv_h, const double* sums,
+                      const SumsSlot& slot, std::int64_t group) {
+  double average = 0.0;
+  st.for_each(blocks, inv_h, [&](const GridNode& n, double w, const double*) {
+    const double* sum = &sums[slot(n, group)];
+    if (sum[1] > 0.0) average += w * sum[0] / sum[1];
+  });
+  return average;
+}
 
 // Runs f(b, blocks, origin) for every owner block b, with blocks[o] the eight blocks its
 // particles' stencils reach and origin its first node. Coloured: blocks of one colour in
@@ -112,6 +144,8 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
   constexpr bool mass = What != Scatter::force;
   constexpr bool momentum = What != Scatter::force;
   constexpr bool force = What == Scatter::mass_momentum_force || What == Scatter::force;
+  const NodeAverageSums* mean = force ? s.mean_stress : nullptr;
+  const SumsSlot slot{grid.block(0), mean ? mean->average.groups : 1};
   for_each_block_coloured(
       bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
         NodeStencil<Shape> st;
@@ -126,8 +160,13 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
           if constexpr (force) {
             const double V = P.volume[p];
             for (int c = 0; c < 6; ++c) vs[c] = V * P.stress[6 * p + c];
-            if (s.mean_stress_shift)
-              for (const int c : {sym::xx, sym::yy, sym::zz}) vs[c] += V * s.mean_stress_shift[p];
+            if (mean) {  // V_p (mbar_p - m_p) 1, mbar_p from the sums scattered before this pass
+              const NodeAverage& a = mean->average;
+              const double shift =
+                  a.counts(p) ? gather_average(st, blocks, s.inv_h, mean->sums->data(), slot, a.group[p]) - a.value[p]
+                              : 0.0;
+              for (const int c : {sym::xx, sym::yy, sym::zz}) vs[c] += V * shift;
+            }
           }
           st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double* g) {
             if constexpr (mass) n.mass += w * m;
@@ -198,57 +237,75 @@ void gather_velocity(Particles& P, const ParticleBins& bins, SparseGrid& grid, c
       });
 }
 
-template <class Shape, NodalVelocity Which>
-void gather_gradient(Particles& P, const ParticleBins& bins, const SparseGrid& grid,
-                     const Setup& s) {
-  for_each_block(
-      bins, grid,
-      [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
-        NodeStencil<Shape> st;
-        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-          const std::uint32_t p = bins.order[k];
-          double a_cells[3];
-          st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
-          double L[9] = {};
-          st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
-            double v[3];
-            for (int d = 0; d < 3; ++d) {
-              if constexpr (Which == NodalVelocity::start) v[d] = n.p[d];
-              if constexpr (Which == NodalVelocity::end) v[d] = n.p[d] + n.f[d];
-              if constexpr (Which == NodalVelocity::remapped) v[d] = n.q[d];
-            }
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j) L[3 * i + j] += v[i] * g[j];
-          });
-          double* Lp = &P.velocity_gradient[9 * p];
-          for (int c = 0; c < 9; ++c) Lp[c] = L[c];
-        }
+// L_p of the particles of owner block b; with Average also a_p = tr L_p into the dilatation's
+// values and sums (blocks then writable: colour by colour).
+template <class Shape, NodalVelocity Which, bool Average, class Node>
+void gradient_of_block(Particles& P, const ParticleBins& bins, std::uint32_t b, Node* const* blocks,
+                       const std::array<int, 3>& origin, const Setup& s, const NodeAverageSums* dilatation,
+                       double* trace, const SumsSlot& slot) {
+  NodeStencil<Shape> st;
+  for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+    const std::uint32_t p = bins.order[k];
+    double a_cells[3];
+    st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+    double L[9] = {};
+    st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
+      double v[3];
+      for (int d = 0; d < 3; ++d) {
+        if constexpr (Which == NodalVelocity::start) v[d] = n.p[d];
+        if constexpr (Which == NodalVelocity::end) v[d] = n.p[d] + n.f[d];
+        if constexpr (Which == NodalVelocity::remapped) v[d] = n.q[d];
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) L[3 * i + j] += v[i] * g[j];
+    });
+    double* Lp = &P.velocity_gradient[9 * p];
+    for (int c = 0; c < 9; ++c) Lp[c] = L[c];
+    if constexpr (Average) {
+      const NodeAverage& a = dilatation->average;
+      trace[p] = Lp[0] + Lp[4] + Lp[8];
+      if (!a.counts(p)) continue;
+      const double V = P.volume[p], Va = V * trace[p];
+      double* sums = dilatation->sums->data();
+      st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
+        double* sum = &sums[slot(n, a.group[p])];
+        sum[0] += w * Va;
+        sum[1] += w * V;
       });
+    }
+  }
+}
+
+template <class Shape, NodalVelocity Which>
+void gather_gradient(Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
+                     const NodeAverageSums* dilatation, std::vector<double>* trace) {
+  const SumsSlot slot{grid.block(0), dilatation ? dilatation->average.groups : 1};
+  if (!dilatation) {
+    for_each_block(bins, grid, [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
+      gradient_of_block<Shape, Which, false>(P, bins, b, blocks, origin, s, nullptr, nullptr, slot);
+    });
+    return;
+  }
+  zero_sums(grid, dilatation->average.groups, *dilatation->sums);
+  double* t = trace->data();
+  for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
+    gradient_of_block<Shape, Which, true>(P, bins, b, blocks, origin, s, dilatation, t, slot);
+  });
 }
 
 Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
   return {grid.geometry(), 1.0 / grid.geometry().cell_size,
-          c.half_width ? c.half_width->data() : nullptr, c.mean_stress_shift};
+          c.half_width ? c.half_width->data() : nullptr, c.mean_stress};
 }
 
-// sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p) over the counted particles of the group;
-// then out_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p). Nodes are indexed by their
-// place in the grid's storage, groups by `group`.
+// sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p) over the counted particles of the group.
 template <class Shape>
-void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
-                       const NodeAverage& a, std::vector<double>& sums, std::vector<double>& out) {
-  const int G = a.groups;
-  const GridNode* base = grid.block(0);
-  const auto block_values = static_cast<std::int64_t>(SparseGrid::block_size) * G * 2;
-  const auto blocks = static_cast<std::int64_t>(grid.block_count());
-  sums.resize(static_cast<std::size_t>(blocks * block_values));
-  out.resize(P.size());
-  double* zero = sums.data();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < blocks; ++b) std::fill_n(zero + b * block_values, block_values, 0.0);
-  auto slot = [&](const GridNode& n, std::uint32_t p) {
-    return 2 * (static_cast<std::size_t>(&n - base) * G + static_cast<std::size_t>(a.group[p]));
-  };
+void node_average_scatter_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
+                               const NodeAverageSums& na) {
+  const NodeAverage& a = na.average;
+  zero_sums(grid, a.groups, *na.sums);
+  double* sums = na.sums->data();
+  const SumsSlot slot{grid.block(0), a.groups};
   for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
@@ -258,12 +315,22 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
       st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
       const double V = P.volume[p], Va = V * a.value[p];
       st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
-        double* sum = &sums[slot(n, p)];
+        double* sum = &sums[slot(n, a.group[p])];
         sum[0] += w * Va;
         sum[1] += w * V;
       });
     }
   });
+}
+
+// out_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p) for the binned counted particles.
+template <class Shape>
+void node_average_gather_impl(const Particles& P, const ParticleBins& bins, const SparseGrid& grid, const Setup& s,
+                              const NodeAverageSums& na, std::vector<double>& out) {
+  const NodeAverage& a = na.average;
+  const double* sums = na.sums->data();
+  const SumsSlot slot{grid.block(0), a.groups};
+  out.resize(P.size());
   for_each_block(bins, grid, [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
@@ -274,12 +341,7 @@ void node_average_impl(const Particles& P, const ParticleBins& bins, SparseGrid&
       }
       double a_cells[3];
       st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
-      double average = 0.0;
-      st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
-        const double* sum = &sums[slot(n, p)];
-        if (sum[1] > 0.0) average += w * sum[0] / sum[1];
-      });
-      out[p] = average;
+      out[p] = gather_average(st, blocks, s.inv_h, sums, slot, a.group[p]);
     }
   });
 }
@@ -339,11 +401,27 @@ void particles_to_grid(Scatter what, const Particles& particles, const ParticleB
 void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                   const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
                   std::vector<double>& out) {
+  const NodeAverageSums na{average, &sums};
+  node_average_scatter(particles, bins, grid, context, na);
+  node_average_gather(particles, bins, grid, context, na, out);
+}
+
+void node_average_scatter(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                          const TransferContext& context, const NodeAverageSums& sums) {
   const Setup s = make_setup(grid, context);
   if (context.shape == ShapeFunction::linear)
-    node_average_impl<LinearShape>(particles, bins, grid, s, average, sums, out);
+    node_average_scatter_impl<LinearShape>(particles, bins, grid, s, sums);
   else
-    node_average_impl<GimpShape>(particles, bins, grid, s, average, sums, out);
+    node_average_scatter_impl<GimpShape>(particles, bins, grid, s, sums);
+}
+
+void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
+                         const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out) {
+  const Setup s = make_setup(grid, context);
+  if (context.shape == ShapeFunction::linear)
+    node_average_gather_impl<LinearShape>(particles, bins, grid, s, sums, out);
+  else
+    node_average_gather_impl<GimpShape>(particles, bins, grid, s, sums, out);
 }
 
 void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
@@ -365,28 +443,29 @@ void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGri
     gather_velocity<GimpShape>(particles, bins, grid, s, context.flip, remap);
 }
 
-void velocity_gradient(Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
-                       const TransferContext& context, NodalVelocity which) {
+void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                       const TransferContext& context, NodalVelocity which, const NodeAverageSums* dilatation,
+                       std::vector<double>* trace) {
   const Setup s = make_setup(grid, context);
   const bool linear = context.shape == ShapeFunction::linear;
   switch (which) {
     case NodalVelocity::start:
       if (linear)
-        gather_gradient<LinearShape, NodalVelocity::start>(particles, bins, grid, s);
+        gather_gradient<LinearShape, NodalVelocity::start>(particles, bins, grid, s, dilatation, trace);
       else
-        gather_gradient<GimpShape, NodalVelocity::start>(particles, bins, grid, s);
+        gather_gradient<GimpShape, NodalVelocity::start>(particles, bins, grid, s, dilatation, trace);
       break;
     case NodalVelocity::end:
       if (linear)
-        gather_gradient<LinearShape, NodalVelocity::end>(particles, bins, grid, s);
+        gather_gradient<LinearShape, NodalVelocity::end>(particles, bins, grid, s, dilatation, trace);
       else
-        gather_gradient<GimpShape, NodalVelocity::end>(particles, bins, grid, s);
+        gather_gradient<GimpShape, NodalVelocity::end>(particles, bins, grid, s, dilatation, trace);
       break;
     case NodalVelocity::remapped:
       if (linear)
-        gather_gradient<LinearShape, NodalVelocity::remapped>(particles, bins, grid, s);
+        gather_gradient<LinearShape, NodalVelocity::remapped>(particles, bins, grid, s, dilatation, trace);
       else
-        gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s);
+        gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s, dilatation, trace);
       break;
   }
 }

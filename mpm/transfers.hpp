@@ -12,14 +12,35 @@
 
 namespace hvi::mpm {
 
+// A particle scalar a_p averaged through the grid nodes, group by group:
+//   a_I = sum_p N_I(x_p) V_p a_p / sum_p N_I(x_p) V_p   over the counted particles of one group,
+//   abar_p = sum_I N_I(x_p) a_I                         with the nodal values of p's group.
+// Particles with skip[p] > 0 neither count nor get a value (abar_p = 0).
+struct NodeAverage {
+  const double* value = nullptr;        // a_p
+  const std::int64_t* group = nullptr;  // per particle, in [0, groups)
+  int groups = 1;
+  const double* skip = nullptr;
+  bool counts(std::size_t p) const { return !(skip && skip[p] > 0.0); }
+};
+
+// A node average's sums, sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p), kept between the
+// pass that scatters them and the one that gathers abar_p (in another transfer, which saves
+// that transfer's particles a second pass: TransferContext::mean_stress, velocity_gradient).
+struct NodeAverageSums {
+  NodeAverage average;
+  std::vector<double>* sums = nullptr;
+};
+
 struct TransferContext {
   ShapeFunction shape = ShapeFunction::linear;
   const std::vector<double>* half_width = nullptr;  // GIMP particle half-widths, 3 per particle, m
   double flip = 1.0;  // FLIP fraction of the particle velocity update (1 FLIP, 0 PIC)
   double dt = 0.0;
-  // Per particle, added to the diagonal of its stress in the internal force (the node-averaged
-  // mean stress less its own, volumetric_average.hpp); nullptr for none.
-  const double* mean_stress_shift = nullptr;
+  // With a force scatter: the node average of the mean stress (volumetric_average.hpp), whose
+  // mbar_p - m_p the same pass gathers and adds to the diagonal of each counted particle's
+  // stress in the internal force; nullptr for none.
+  const NodeAverageSums* mean_stress = nullptr;
 };
 
 enum class Scatter {
@@ -38,22 +59,16 @@ void particles_to_grid(Scatter what, const Particles& particles, const ParticleB
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                        const TransferContext& context, bool remap);
 
-// A particle scalar a_p averaged through the grid nodes, group by group:
-//   a_I = sum_p N_I(x_p) V_p a_p / sum_p N_I(x_p) V_p   over the counted particles of one group,
-//   abar_p = sum_I N_I(x_p) a_I                         with the nodal values of p's group.
-// Particles with skip[p] > 0 neither count nor get a value (abar_p = 0).
-struct NodeAverage {
-  const double* value = nullptr;        // a_p
-  const std::int64_t* group = nullptr;  // per particle, in [0, groups)
-  int groups = 1;
-  const double* skip = nullptr;
-  bool counts(std::size_t p) const { return !(skip && skip[p] > 0.0); }
-};
-
-// Fills out (one value per particle); sums is scratch storage kept between calls.
+// Fills out (one value per particle); sums is scratch storage kept between calls. The same as
+// node_average_scatter, then node_average_gather.
 void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                   const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
                   std::vector<double>& out);
+void node_average_scatter(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                          const TransferContext& context, const NodeAverageSums& sums);
+// abar_p into out[p] for the binned particles (0 for those that do not count).
+void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
+                         const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out);
 
 // Per node, in the order of the grid's node storage, g_I = sum_p m_p grad N_I(x_p) (three values):
 // about -int N_I grad rho, the outward normal of the particles' material at node I (contact.hpp).
@@ -70,8 +85,11 @@ enum class NodalVelocity {
   remapped,  // q: velocity remapped from the updated particle velocities (MUSL)
 };
 
-// L_p = sum_I v_I (x) grad N_I(x_p), at the start-of-step positions.
-void velocity_gradient(Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
-                       const TransferContext& context, NodalVelocity which);
+// L_p = sum_I v_I (x) grad N_I(x_p), at the start-of-step positions. With `dilatation`, the same
+// pass (then colour by colour) stores tr L_p in `trace`, the values of dilatation->average, and
+// fills dilatation's sums from them, as node_average_scatter would.
+void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                       const TransferContext& context, NodalVelocity which,
+                       const NodeAverageSums* dilatation = nullptr, std::vector<double>* trace = nullptr);
 
 }  // namespace hvi::mpm

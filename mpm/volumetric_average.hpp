@@ -38,23 +38,28 @@ class VolumetricAverage {
  public:
   explicit VolumetricAverage(int bodies) : bodies_(bodies) {}
 
-  // Before a scatter of the internal force: mbar_p - m_p per particle (0 for failed points), to
-  // go into TransferContext::mean_stress_shift.
-  const std::vector<double>& mean_stress_shift(const Particles& particles, const ParticleBins& bins,
-                                               SparseGrid& grid, const TransferContext& context);
+  // Before a scatter of the internal force: the node sums of the mean stress m_p = tr sigma_p / 3,
+  // for TransferContext::mean_stress (the scatter gathers mbar_p - m_p from them).
+  const NodeAverageSums& mean_stress_sums(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+                                          const TransferContext& context);
 
-  // After the velocity gradient: tr L_p -> dbar_p on every intact point.
-  void average_dilatation(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
+  // For velocity_gradient: where it puts d_p = tr L_p and the node sums of the dilatation.
+  const NodeAverageSums& dilatation_sums(const Particles& particles);
+  std::vector<double>* dilatation_values() { return &value_; }
+  // After velocity_gradient with dilatation_sums(): L_p <- L_p + (dbar_p - d_p) / 3 1 on every
+  // intact point.
+  void average_dilatation(Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
                           const TransferContext& context);
 
   std::size_t bytes() const {
-    return (value_.capacity() + average_.capacity() + shift_.capacity() + sums_.capacity()) * sizeof(double);
+    return (value_.capacity() + average_.capacity() + sums_.capacity()) * sizeof(double);
   }
 
  private:
-  NodeAverage averaging(const Particles& particles) const;
+  NodeAverageSums averaging(const Particles& particles);
   int bodies_;
-  std::vector<double> value_, average_, shift_, sums_;
+  std::vector<double> value_, average_, sums_;
+  NodeAverageSums current_;
 };
 
 }  // namespace hvi::mpm

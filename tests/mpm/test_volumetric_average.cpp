@@ -2,7 +2,10 @@
 // reproduces a constant exactly (partition of unity), keeps bodies and failed points apart, and is
 // symmetric in the volume-weighted product, sum V a Abar(b) = sum V b Abar(a): the identity that
 // lets the averaged mean stress in the force pay exactly the work of the averaged dilatation (the
-// whole scheme's energy balance is tested on the Taylor bar, tests/verification).
+// whole scheme's energy balance is tested on the Taylor bar, tests/verification). The solver takes
+// both averages inside other transfers (the mean stress's gather in the force scatter, the
+// dilatation's scatter in the velocity gradient's pass); they give what the separate passes give.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -100,6 +103,85 @@ TEST_P(NodeAverageTest, IsSymmetricInTheVolumeWeightedProduct) {
     scale += c.P.volume[p] * std::fabs(a[p] * bbar[p]);
   }
   EXPECT_NEAR(left, right, 1e-13 * scale);
+}
+
+// The force scatter with TransferContext::mean_stress gathers mbar_p - m_p itself: the nodal forces
+// are those of a plain scatter of sigma_p + (mbar_p - m_p) 1, with mbar from node_average, to
+// round-off (the two add V sigma and V shift in another order).
+TEST_P(NodeAverageTest, ForceScatterTakesTheMeanStressAverageInItsPass) {
+  Cloud c(3000, GetParam(), 14);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e8, 1e8);
+  std::vector<double> mean(c.P.size()), skip(c.P.size(), 0.0);
+  for (std::size_t p = 0; p < c.P.size(); ++p) {
+    for (int k = 0; k < 6; ++k) c.P.stress[6 * p + k] = u(rng);
+    c.P.mass[p] = 2700 * c.P.volume[p];
+    mean[p] = trace_sym(&c.P.stress[6 * p]) / 3.0;
+    if (p % 9 == 4) skip[p] = 1.0;
+  }
+  NodeAverageSums sums{NodeAverage{mean.data(), c.P.body.data(), 2, skip.data()}, nullptr};
+  std::vector<double> storage;
+  sums.sums = &storage;
+  node_average_scatter(c.P, c.bins, c.grid, c.context, sums);
+  TransferContext fused = c.context;
+  fused.mean_stress = &sums;
+  particles_to_grid(Scatter::force, c.P, c.bins, c.grid, fused);
+  std::vector<double> f_fused;
+  for (std::uint32_t b = 0; b < c.grid.block_count(); ++b)
+    for (int k = 0; k < SparseGrid::block_size; ++k)
+      f_fused.insert(f_fused.end(), c.grid.block(b)[k].f, c.grid.block(b)[k].f + 3);
+
+  std::vector<double> average;
+  node_average_gather(c.P, c.bins, c.grid, c.context, sums, average);
+  for (std::size_t p = 0; p < c.P.size(); ++p)
+    if (skip[p] == 0.0)
+      for (const int k : {sym::xx, sym::yy, sym::zz}) c.P.stress[6 * p + k] += average[p] - mean[p];
+  for (std::uint32_t b = 0; b < c.grid.block_count(); ++b)
+    for (int k = 0; k < SparseGrid::block_size; ++k) std::fill_n(c.grid.block(b)[k].f, 3, 0.0);
+  particles_to_grid(Scatter::force, c.P, c.bins, c.grid, c.context);
+  double scale = 0.0, worst = 0.0;
+  std::size_t i = 0;
+  for (std::uint32_t b = 0; b < c.grid.block_count(); ++b)
+    for (int k = 0; k < SparseGrid::block_size; ++k)
+      for (int d = 0; d < 3; ++d, ++i) {
+        scale = std::max(scale, std::fabs(c.grid.block(b)[k].f[d]));
+        worst = std::max(worst, std::fabs(c.grid.block(b)[k].f[d] - f_fused[i]));
+      }
+  EXPECT_GT(scale, 0.0);
+  EXPECT_LT(worst, 1e-13 * scale);
+}
+
+// The velocity gradient with the dilatation's sums leaves d_p = tr L_p and the sums exactly as a
+// plain velocity gradient followed by node_average_scatter of tr L_p does (the same additions in
+// the same order).
+TEST_P(NodeAverageTest, VelocityGradientScattersTheDilatationInItsPass) {
+  Cloud c(3000, GetParam(), 15);
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> skip(c.P.size(), 0.0);
+  for (std::size_t p = 0; p < c.P.size(); ++p) {
+    c.P.mass[p] = 2700 * c.P.volume[p];
+    for (int d = 0; d < 3; ++d) c.P.velocity[3 * p + d] = 100 * u(rng);
+    if (p % 5 == 2) skip[p] = 1.0;
+  }
+  particles_to_grid(Scatter::mass_momentum, c.P, c.bins, c.grid, c.context);  // some nodal p to take L from
+  std::vector<double> trace(c.P.size()), fused_sums;
+  const NodeAverageSums fused{NodeAverage{trace.data(), c.P.body.data(), 2, skip.data()}, &fused_sums};
+  velocity_gradient(c.P, c.bins, c.grid, c.context, NodalVelocity::start, &fused, &trace);
+  const std::vector<double> L_fused = c.P.velocity_gradient;
+
+  std::vector<double> plain_trace(c.P.size()), plain_sums;
+  velocity_gradient(c.P, c.bins, c.grid, c.context, NodalVelocity::start);
+  for (std::size_t p = 0; p < c.P.size(); ++p) {
+    const double* L = &c.P.velocity_gradient[9 * p];
+    plain_trace[p] = L[0] + L[4] + L[8];
+  }
+  const NodeAverageSums plain{NodeAverage{plain_trace.data(), c.P.body.data(), 2, skip.data()}, &plain_sums};
+  node_average_scatter(c.P, c.bins, c.grid, c.context, plain);
+  EXPECT_EQ(L_fused, c.P.velocity_gradient);
+  EXPECT_EQ(trace, plain_trace);
+  EXPECT_EQ(fused_sums, plain_sums);
+  EXPECT_GT(*std::max_element(plain_sums.begin(), plain_sums.end()), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, NodeAverageTest,
