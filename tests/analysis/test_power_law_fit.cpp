@@ -236,5 +236,22 @@ TEST(PowerLawFit, TableFromRunDirectories) {
   EXPECT_NE(t.labels[1].find("run_b"), std::string::npos);
 }
 
+// The fine-cell front law the README and docs/paper_results.md quote, from the CSV they name: the
+// figures there are this fit's, to the digits printed.
+TEST(PowerLawFit, FineCellFrontHolesGiveTheDocumentedLaw) {
+  const Table t = read_csv(fs::path(HVI_SOURCE_DIR) / "docs" / "front_holes_0141.csv");
+  ASSERT_EQ(t.rows.size(), 17u);
+  const PowerLawFit f = fit(PowerLawForm::front, t);
+  EXPECT_NEAR(f.constant, 3.05, 0.005);
+  EXPECT_NEAR(f.log_constant, 1.12, 0.005);
+  EXPECT_NEAR(f.log_constant_standard_error, 0.32, 0.005);
+  EXPECT_NEAR(f.exponents[0].value, 0.764, 0.0005);
+  EXPECT_NEAR(f.exponents[0].standard_error, 0.064, 0.0005);
+  EXPECT_NEAR(f.exponents[1].value, 0.818, 0.0005);
+  EXPECT_NEAR(f.exponents[1].standard_error, 0.099, 0.0005);
+  EXPECT_NEAR(f.r2_log, 0.939, 0.0005);
+  EXPECT_NEAR(f.r2, 0.941, 0.0005);
+}
+
 }  // namespace
 }  // namespace hvi::analysis
