@@ -133,6 +133,15 @@ struct FarField::Impl {
   std::vector<double> batch_stretch;
   double plastic_work = 0.0;
   unsigned n_q = 0;
+  // Cells taken out by remove_cells: per lane of each batch (W per batch), and per active cell.
+  std::vector<std::uint8_t> lane_removed, cell_removed;
+  std::size_t removed_cells = 0;
+  // For sample(): the mesh lines along x, y, z; per brick (i, j, k), i slowest, its active cell
+  // index (-1 in the hole); per active cell its iterator and (batch, lane).
+  std::array<std::vector<double>, dim> lines;
+  std::vector<int> brick_cell;
+  std::vector<DoFHandler<dim>::active_cell_iterator> cell_iterator;
+  std::vector<std::pair<unsigned, unsigned>> cell_lane;
 
   bool any_plastic() const { return !plastic.empty(); }
   bool lane_is_plastic(unsigned cell, unsigned lane) const {
@@ -263,7 +272,7 @@ struct FarField::Impl {
       if (spec.finite_strain) {
         double s = 1.0;
         for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
-          s = std::max(s, s_max[lane]);
+          if (!lane_removed[W * cell + lane]) s = std::max(s, s_max[lane]);
         batch_stretch[cell] = s;
       }
     });
@@ -361,7 +370,8 @@ struct FarField::Impl {
       phi.reinit(cell);
       VA rho = 0.0;
       for (unsigned int lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
-        rho[lane] = spec.layers[matrix_free.get_cell_iterator(cell, lane)->material_id()].density;
+        if (!lane_removed[W * cell + lane])
+          rho[lane] = spec.layers[matrix_free.get_cell_iterator(cell, lane)->material_id()].density;
       Tensor<1, dim, VA> value;
       for (int d = 0; d < dim; ++d) value[d] = rho;
       for (unsigned int q = 0; q < phi.n_q_points; ++q) phi.submit_value(value, q);
@@ -381,6 +391,8 @@ struct FarField::Impl {
   void setup_matrix_free();
   void setup_plasticity();
   void colour_batches();
+  void lump_mass();
+  void index_cells();
   double element_bound_time_step() const;
 };
 
@@ -432,6 +444,12 @@ void FarField::Impl::build_mesh() {
     x += spec.x_steps[i];
   }
   if (kept == 0) throw std::invalid_argument("far field: the hole removes every element");
+  const std::array<const std::vector<double>*, dim> steps{&spec.x_steps, &spec.y_steps, &z_steps};
+  const std::array<double, dim> origin{spec.lower[0], spec.lower[1], spec.layers.front().z_lower};
+  for (int d = 0; d < dim; ++d) {
+    lines[d] = {origin[d]};
+    for (const double h : *steps[d]) lines[d].push_back(lines[d].back() + h);
+  }
   GridGenerator::subdivided_hyper_rectangle(
       triangulation, {spec.x_steps, spec.y_steps, z_steps},
       Point<dim>(spec.lower[0], spec.lower[1], spec.layers.front().z_lower), ids);
@@ -503,16 +521,41 @@ void FarField::Impl::setup_matrix_free() {
   v.reinit(n);
   work_in.reinit(n);
   work_out.reinit(n);
-  Vector<double> m(n);
+  lane_removed.assign(static_cast<std::size_t>(W) * matrix_free.n_cell_batches(), 0);
+  cell_removed.assign(triangulation.n_active_cells(), 0);
+  index_cells();
+  lump_mass();
+  for (const double m : mass)
+    if (!(m > 0.0)) throw std::logic_error("far field: a node has no positive lumped mass");
+}
+
+void FarField::Impl::index_cells() {
+  const std::size_t nx = lines[0].size() - 1, ny = lines[1].size() - 1, nz = lines[2].size() - 1;
+  brick_cell.assign(nx * ny * nz, -1);
+  cell_iterator.resize(triangulation.n_active_cells());
+  cell_lane.resize(triangulation.n_active_cells());
+  for (unsigned cell = 0; cell < matrix_free.n_cell_batches(); ++cell)
+    for (unsigned lane = 0; lane < matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
+      const auto it = matrix_free.get_cell_iterator(cell, lane);
+      const auto index = it->active_cell_index();
+      const Point<dim> c = it->center();
+      std::array<std::size_t, dim> b{};
+      for (int d = 0; d < dim; ++d)
+        b[d] = std::upper_bound(lines[d].begin(), lines[d].end(), c[d]) - lines[d].begin() - 1;
+      brick_cell[(b[0] * ny + b[1]) * nz + b[2]] = static_cast<int>(index);
+      cell_iterator[index] = it;
+      cell_lane[index] = {cell, lane};
+    }
+}
+
+void FarField::Impl::lump_mass() {
+  Vector<double> m(dof_handler.n_dofs());
   if (spec.degree == 1)
     lumped_mass_kernel<1>(m);
   else
     lumped_mass_kernel<2>(m);
-  mass.resize(n / 3);
-  for (std::size_t a = 0; a < mass.size(); ++a) {
-    mass[a] = m[3 * a];
-    if (!(mass[a] > 0.0)) throw std::logic_error("far field: a node has no positive lumped mass");
-  }
+  mass.resize(m.size() / 3);
+  for (std::size_t a = 0; a < mass.size(); ++a) mass[a] = m[3 * a];
 }
 
 // Greedy colouring: each batch takes the lowest colour none of its nodes has yet.
@@ -662,7 +705,7 @@ void FarField::step(double dt, std::span<const double> external) {
   for (std::size_t a = 0; a < nodes; ++a)
     for (int d = 0; d < 3; ++d) {
       const std::size_t i = 3 * a + d;
-      if (I.fixed[a] & (1u << d)) {
+      if ((I.fixed[a] & (1u << d)) || I.mass[a] == 0.0) {  // held, or detached by remove_cells
         I.v[i] = 0.0;
         continue;
       }
@@ -694,6 +737,101 @@ double FarField::strain_energy() const {
 }
 
 double FarField::plastic_work() const { return impl_->plastic_work; }
+
+std::vector<FarField::PointSample> FarField::sample(std::span<const double> points) const {
+  const auto& I = *impl_;
+  const unsigned p = I.spec.degree, n1 = p + 1;
+  const QGauss<1> gauss(n1);
+  const std::size_t ny = I.lines[1].size() - 1, nz = I.lines[2].size() - 1;
+  std::vector<types::global_dof_index> dofs(I.fe->n_dofs_per_cell());
+  std::vector<PointSample> out(points.size() / 3);
+  for (std::size_t s = 0; s < out.size(); ++s) {
+    const double* x = &points[3 * s];
+    // The brick holding x, and x in its unit cube.
+    std::array<std::size_t, dim> b{};
+    Point<dim> unit;
+    bool inside = true;
+    for (int d = 0; d < dim && inside; ++d) {
+      const auto& L = I.lines[d];
+      const double tol = 1e-9 * (L.back() - L.front());
+      if (x[d] < L.front() - tol || x[d] > L.back() + tol) {
+        inside = false;
+        break;
+      }
+      auto it = std::upper_bound(L.begin(), L.end(), x[d]);
+      b[d] = std::min<std::size_t>(std::max<std::ptrdiff_t>(it - L.begin() - 1, 0), L.size() - 2);
+      unit[d] = std::clamp((x[d] - L[b[d]]) / (L[b[d] + 1] - L[b[d]]), 0.0, 1.0);
+    }
+    if (!inside) continue;
+    const int index = I.brick_cell[(b[0] * ny + b[1]) * nz + b[2]];
+    if (index < 0 || I.cell_removed[index]) continue;
+    const auto& cell = I.cell_iterator[index];
+    cell->get_dof_indices(dofs);
+    PointSample& r = out[s];
+    r.layer = cell->material_id();
+    Tensor<2, dim> H;
+    for (unsigned i = 0; i < dofs.size(); ++i) {
+      const unsigned c = I.fe->system_to_component_index(i).first;
+      const double N = I.fe->shape_value_component(i, unit, c);
+      const Tensor<1, dim> g = I.fe->shape_grad_component(i, unit, c);
+      r.displacement[c] += N * I.u[dofs[i]];
+      r.velocity[c] += N * I.v[dofs[i]];
+      for (int d = 0; d < dim; ++d) H[c][d] += g[d] / (I.lines[d][b[d] + 1] - I.lines[d][b[d]]) * I.u[dofs[i]];
+    }
+    static constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+    for (int k = 0; k < 6; ++k) r.strain[k] = 0.5 * (H[voigt[k][0]][voigt[k][1]] + H[voigt[k][1]][voigt[k][0]]);
+    Tensor<2, dim> eps;
+    for (int k = 0; k < 6; ++k) eps[voigt[k][0]][voigt[k][1]] = eps[voigt[k][1]][voigt[k][0]] = r.strain[k];
+    const auto [batch, lane] = I.cell_lane[index];
+    if (I.any_plastic() && I.lane_is_plastic(batch, lane)) {
+      // The nearest Gauss point: per axis the nearest of the n1 points, x running fastest.
+      unsigned q = 0;
+      for (int d = dim - 1; d >= 0; --d) {
+        unsigned best = 0;
+        for (unsigned k = 1; k < n1; ++k)
+          if (std::abs(gauss.point(k)[0] - unit[d]) < std::abs(gauss.point(best)[0] - unit[d])) best = k;
+        q = q * n1 + best;
+      }
+      const double* st = I.state(batch, q, lane);
+      for (int k = 0; k < 6; ++k) {
+        eps[voigt[k][0]][voigt[k][1]] -= st[k];
+        if (voigt[k][0] != voigt[k][1]) eps[voigt[k][1]][voigt[k][0]] -= st[k];
+      }
+      r.plastic_strain = st[6];
+      r.damage = I.state_size > 7 ? st[7] : 0.0;
+    }
+    const Tensor<2, dim> sigma = orthotropic_stress(I.layer_stiffness[r.layer], eps);
+    for (int k = 0; k < 6; ++k) r.stress[k] = sigma[voigt[k][0]][voigt[k][1]];
+  }
+  return out;
+}
+
+std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
+  auto& I = *impl_;
+  std::size_t newly = 0;
+  for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
+    for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
+      const auto it = I.matrix_free.get_cell_iterator(cell, lane);
+      const Point<dim> c = it->center();
+      const std::size_t l = Impl::W * cell + lane;
+      if (I.lane_removed[l] || !(c[0] > box[0] && c[0] < box[2] && c[1] > box[1] && c[1] < box[3])) continue;
+      // No stiffness (so no stress, force or strain energy), no plastic state, no mass.
+      I.lane_removed[l] = 1;
+      I.cell_removed[it->active_cell_index()] = 1;
+      for (auto& C : I.batch_stiffness[cell]) C[lane] = 0.0;
+      if (!I.lane_layer.empty()) I.lane_layer[l] = -1;
+      ++newly;
+    }
+  if (newly == 0) return 0;
+  I.removed_cells += newly;
+  I.lump_mass();
+  for (std::size_t a = 0; a < I.mass.size(); ++a)
+    if (I.mass[a] == 0.0)
+      for (int d = 0; d < dim; ++d) I.v[3 * a + d] = 0.0;
+  return newly;
+}
+
+std::size_t FarField::removed_cell_count() const { return impl_->removed_cells; }
 bool FarField::plastic() const { return impl_->any_plastic(); }
 bool FarField::finite_strain() const { return impl_->spec.finite_strain; }
 
@@ -754,13 +892,18 @@ std::size_t FarField::bytes() const {
          I.mass.size() * (sizeof(double) + sizeof(int) + sizeof(unsigned)) +
          I.batch_stiffness.size() * sizeof(std::array<VA, 9>) +
          (I.plastic.size() + I.batch_stretch.size()) * sizeof(double) +
-         (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int);
+         (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int) +
+         I.lane_removed.size() + I.cell_removed.size();
 }
 
 void FarField::write_vtu(const std::string& path) const {
   const auto& I = *impl_;
   DataOut<dim> out;
   out.attach_dof_handler(I.dof_handler);
+  if (I.removed_cells > 0)
+    out.set_cell_selection([&](const Triangulation<dim>::cell_iterator& cell) {
+      return cell->is_active() && !I.cell_removed[cell->active_cell_index()];
+    });
   const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector(
       dim, DataComponentInterpretation::component_is_part_of_vector);
   out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);

@@ -134,6 +134,32 @@ class FarField {
   double kinetic_energy(std::span<const double> v) const;
   std::array<double, 3> momentum() const;
 
+  // The far field at points of the undeformed mesh, 3 coordinates per point: what material points
+  // that take over its cells start from. In the cell holding the point (on a face between two, the
+  // one above it): the displacement u and velocity v interpolated by the shape functions, the small
+  // strain eps = (H + H^T)/2 of their gradient, and the stress C : (eps - eps_p) with the plastic
+  // strain eps_p, alpha and damage of the cell's quadrature point nearest to it (none in elastic
+  // layers). The stress is the small-strain one (with finite strain, E's linear part: a sample is
+  // taken where the far field is still small-strained). `layer` is -1 for a point outside the mesh,
+  // in its hole or in a removed cell.
+  struct PointSample {
+    int layer = -1;
+    std::array<double, 3> displacement{}, velocity{};
+    Sym strain{}, stress{};  // Voigt xx, yy, zz, yz, xz, xy; tensor shears
+    double plastic_strain = 0.0, damage = 0.0;
+  };
+  std::vector<PointSample> sample(std::span<const double> points) const;
+
+  // Removes the cells whose centre lies inside the in-plane box (x0, y0, x1, y1), as the mesh's
+  // `hole` leaves them out, for an MPM zone that grows over them: from now on they carry no mass,
+  // stiffness, stress or plastic state, and leave the energies and the VTU output. A node of
+  // removed cells only is detached: its lumped mass is 0, and it neither moves nor counts. The
+  // nodes the removed cells share with the rest lose their share of the mass. Returns the number
+  // of cells newly removed. Their kinetic and strain energy leave the far field's: the caller
+  // books them (the difference of kinetic_energy() and strain_energy() across the call).
+  std::size_t remove_cells(const std::array<double, 4>& box);
+  std::size_t removed_cell_count() const;
+
   // Whether the kinematics are finite (Green-Lagrange) rather than small strain.
   bool finite_strain() const;
   // Whether any layer is plastic (J2 or a yielding core); the largest equivalent plastic strain
