@@ -28,16 +28,27 @@ int axis_weights(double s, int n_cells, std::array<int, 2>& node, std::array<dou
 
 FarFieldCoupling::FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid,
                                    const InterfaceBand& band, double flip, double safety)
-    : far_field_(far_field), flip_(flip), safety_(safety) {
-  const auto x = far_field.reference_positions();
+    : far_field_(far_field), grid_(grid), flip_(flip), safety_(safety) {
   const std::size_t n = far_field.node_count();
-  tied_.assign(n, 0);
   force_.assign(3 * n, 0.0);
   increment_.assign(3 * n, 0.0);
   nodal_velocity_.assign(3 * n, 0.0);
+  retie(band);
+}
+
+void FarFieldCoupling::retie(const InterfaceBand& band) {
+  band_ = band;
+  const auto& grid = grid_;
+  const auto x = far_field_.reference_positions();
+  const auto mass = far_field_.lumped_mass();
+  const std::size_t n = far_field_.node_count();
+  ties_.clear();
+  tied_.assign(n, 0);
+  tied_nodes_ = exact_nodes_ = 0;
   const double tol = 1e-9 * grid.cell_size;
   const auto& z = band.zone;
   for (std::size_t a = 0; a < n; ++a) {
+    if (mass[a] == 0.0) continue;  // detached by remove_cells
     const double px = x[3 * a], py = x[3 * a + 1];
     const bool in_band = px >= z[0] - band.width - tol && px <= z[2] + band.width + tol &&
                          py >= z[1] - band.width - tol && py <= z[3] + band.width + tol;
@@ -107,6 +118,7 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
   auto v = far_field_.velocity();
   auto u = far_field_.displacement();
   for (std::size_t a = 0; a < m.size(); ++a) {
+    if (m[a] == 0.0) continue;  // detached by remove_cells: at rest
     const unsigned fixed = far_field_.fixed(a);
     for (int d = 0; d < 3; ++d) {
       const std::size_t i = 3 * a + d;
@@ -130,13 +142,18 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
 double FarFieldCoupling::stable_time_step() const { return safety_ * far_field_.stable_time_step(); }
 
 mpm::CoupledEnergy FarFieldCoupling::energy() const {
-  return {far_field_.kinetic_energy(), far_field_.strain_energy() + far_field_.plastic_work(), far_field_.momentum()};
+  return {far_field_.kinetic_energy(), far_field_.strain_energy() + far_field_.plastic_work() + converted_,
+          far_field_.momentum()};
 }
 
 std::vector<std::pair<std::string, std::span<double>>> FarFieldCoupling::state() {
   auto s = std::vector<std::pair<std::string, std::span<double>>>{
       {"far_field_displacement", far_field_.displacement()}, {"far_field_velocity", far_field_.velocity()}};
   for (auto& entry : far_field_.plastic_state()) s.push_back(entry);
+  if (growing_) {
+    s.emplace_back("far_field_zone", std::span<double>(band_.zone));
+    s.emplace_back("far_field_converted_energy", std::span<double>(&converted_, 1));
+  }
   return s;
 }
 

@@ -60,6 +60,20 @@ class FarFieldCoupling : public mpm::GridCoupling {
   // plastic state and work, for checkpoints.
   std::vector<std::pair<std::string, std::span<double>>> state() override;
 
+  // A zone that grows (coupling/zone_growth.hpp): the band tied now and the energy booked as
+  // converted are then part of the state (checkpoints), and the converted energy part of the
+  // internal energy.
+  void enable_growth() { growing_ = true; }
+  bool growing() const { return growing_; }
+  const InterfaceBand& band() const { return band_; }
+  void book_conversion(double energy) { converted_ += energy; }
+  double converted_energy() const { return converted_; }
+
+  // Ties the nodes of a new band (the MPM zone grown over far-field cells that
+  // fem::FarField::remove_cells took out), as the constructor does: a node detached by the
+  // removal (no mass) is not tied and takes no step. Throws as the constructor does.
+  void retie(const InterfaceBand& band);
+
   std::size_t tied_node_count() const { return tied_nodes_; }
   // Tied nodes that lie exactly on a grid node (weight 1).
   std::size_t exact_node_count() const { return exact_nodes_; }
@@ -74,6 +88,10 @@ class FarFieldCoupling : public mpm::GridCoupling {
     double weight;
   };
   fem::FarField& far_field_;
+  mpm::GridGeometry grid_;
+  InterfaceBand band_;
+  bool growing_ = false;
+  double converted_ = 0.0;  // J
   double flip_, safety_;
   std::vector<Tie> ties_;               // grouped by far-field node
   std::vector<std::uint8_t> tied_;      // per far-field node

@@ -801,7 +801,10 @@ std::vector<FarField::PointSample> FarField::sample(std::span<const double> poin
       r.damage = I.state_size > 7 ? st[7] : 0.0;
     }
     const Tensor<2, dim> sigma = orthotropic_stress(I.layer_stiffness[r.layer], eps);
-    for (int k = 0; k < 6; ++k) r.stress[k] = sigma[voigt[k][0]][voigt[k][1]];
+    for (int k = 0; k < 6; ++k) {
+      r.stress[k] = sigma[voigt[k][0]][voigt[k][1]];
+      r.elastic_strain[k] = eps[voigt[k][0]][voigt[k][1]];
+    }
   }
   return out;
 }

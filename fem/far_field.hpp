@@ -145,7 +145,7 @@ class FarField {
   struct PointSample {
     int layer = -1;
     std::array<double, 3> displacement{}, velocity{};
-    Sym strain{}, stress{};  // Voigt xx, yy, zz, yz, xz, xy; tensor shears
+    Sym strain{}, elastic_strain{}, stress{};  // Voigt xx, yy, zz, yz, xz, xy; tensor shears
     double plastic_strain = 0.0, damage = 0.0;
   };
   std::vector<PointSample> sample(std::span<const double> points) const;

@@ -72,6 +72,26 @@ void Solver::initialise() {
   choose_time_step();
 }
 
+void Solver::adopt_particles(std::size_t first) {
+  const std::size_t n = particles_.size();
+  for (std::size_t p = first; p < n; ++p)
+    if (!geometry_.contains(&particles_.position[3 * p]))
+      fail(p, "an adopted particle lies outside the grid");
+  if (half_width_) {
+    auto& a = *half_width_;
+    for (std::size_t p = first; p < n; ++p)
+      if (a[3 * p] == 0.0) a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
+  }
+  for (std::size_t p = first; p < n; ++p) materials_[particles_.material[p]]->initialise(particles_, {p, p + 1});
+  double signal = max_signal_speed_;
+  for (std::size_t p = first; p < n; ++p)
+    signal = std::max(signal, materials_[particles_.material[p]]->max_signal_speed(particles_, {p, p + 1}));
+  max_signal_speed_ = signal;
+  bin_particles();
+  sort_by_material_and_block();
+  choose_time_step();
+}
+
 void Solver::restore(const SolverState& state) {
   for (const auto& m : materials_) m->declare_fields(particles_);
   if (is_gimp(settings_.shape)) half_width_ = &particles_.field(half_width_field);

@@ -128,6 +128,14 @@ class Solver {
   // Advances by min(next time step, max_dt).
   void step(double max_dt = std::numeric_limits<double>::infinity());
 
+  // Between steps, takes in the particles from `first` to the end, which the caller appended
+  // (Particles::resize) and set (position, velocity, mass, volume0, volume, stress, internal
+  // energy, ids, body, material; state fields of the materials' models where they start from
+  // other than zero; GIMP half-widths, else V0^(1/3) / 2): checks they lie in the grid, initialises
+  // their materials' state as initialise() does, groups the particles by material again and
+  // chooses the next time step with them. Throws SolverError naming a particle outside the grid.
+  void adopt_particles(std::size_t first);
+
   double time() const { return state_.time; }
   std::int64_t step_count() const { return state_.step; }
   double next_time_step() const { return state_.next_dt; }

@@ -1,0 +1,80 @@
+#pragma once
+// A hybrid's MPM zone that grows over the far field where the damage reaches its edge, as
+// hydrocodes turn eroding elements into particles: the far field cannot tear, perforate or spray
+// debris, so the zone must hold wherever the panel does.
+//
+// When (grown_zone): a side of the zone grows by `step` when a point of the panel's bodies within
+// `margin` of it (in plane, inside the zone) has Johnson-Cook damage D >= `damage` (or has
+// failed), up to the side's `limit`. A side on a symmetry plane, or already at its limit, stays.
+//
+// How (take_over), between two steps, for the cells of the grown zone:
+//  1. The far field is sampled (fem::FarField::sample) at the new points' undeformed positions X,
+//     and they start from it: x = X + u(X), v = v(X). A point of a layer that carries its stress
+//     (the facesheets) takes the stress C : (eps - eps_p), its alpha and damage, and the volume
+//     V0 (1 + tr eps), so that its equation of state gives back the far field's pressure; a
+//     point of the homogenised core starts unstressed at V0 (the core's averaged stress is not
+//     its walls'), keeping alpha and damage. Its specific internal energy is the elastic
+//     1/2 sigma : (eps - eps_p) / rho.
+//  2. The cells are removed (fem::FarField::remove_cells) and the band is tied anew
+//     (FarFieldCoupling::retie).
+//  3. Momentum is conserved exactly: the far field's loss of momentum, less the new points', is
+//     shared out over the new points as one velocity, dv = (P_lost - sum m v) / sum m.
+//  4. Energy is accounted for exactly: what the far field loses (its kinetic and strain energy)
+//     less what the new points hold (1/2 m v^2 + m e) is booked in the coupling's internal
+//     energy as converted (FarFieldCoupling::book_conversion), so the total stays continuous; its
+//     size is reported as the take-over's mismatch.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "coupling/far_field_coupling.hpp"
+#include "fem/far_field.hpp"
+#include "mpm/solver.hpp"
+
+namespace hvi::coupling {
+
+struct ZoneGrowth {
+  std::array<double, 4> limit{};  // the largest zone: x0, y0, x1, y1 (m, on grid planes)
+  double step = 0.0;              // m, a whole number of grid cells
+  double margin = 0.0;            // m
+  double damage = 1.0;            // D that counts as reaching the edge
+  // Per side (x0, y0, x1, y1): whether it may move (false on a symmetry plane).
+  std::array<bool, 4> movable{true, true, true, true};
+};
+
+// The zone grown as above from the points of `bodies` (indices into the scene's bodies), or
+// `zone` itself when no side needs to move.
+std::array<double, 4> grown_zone(const mpm::Particles& particles, std::span<const std::int64_t> bodies,
+                                 const std::array<double, 4>& zone, const ZoneGrowth& growth);
+
+// The ring `grown` adds to `zone` (grown holds zone), as up to four in-plane boxes x0, y0, x1, y1
+// that do not overlap: below and above the zone along y over the grown zone's width, and left and
+// right of it along x over the zone's height.
+std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone, const std::array<double, 4>& grown);
+
+// Material points, undeformed, that take over far-field cells.
+struct NewPoints {
+  std::vector<double> position;    // X, 3 per point (m)
+  std::vector<double> volume;      // V0 (m^3)
+  std::vector<double> half_width;  // 3 per point (m), or empty
+  std::vector<double> density;     // reference density (kg/m^3)
+  std::vector<std::int64_t> body, material;
+  std::size_t size() const { return volume.size(); }
+};
+
+struct TakeoverReport {
+  std::size_t points = 0, cells = 0;
+  double far_field_energy = 0.0;  // the far field's loss, J
+  double point_energy = 0.0;      // what the new points hold, J
+  double momentum_correction = 0.0;  // |dv| of step 3, m/s
+};
+
+// `stressed_layers[l]`: whether points of far-field layer l take its stress (true for the
+// facesheets). Throws fem's and the coupling's errors, or mpm::SolverError for a point that
+// falls outside the far field or the grid.
+TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, mpm::Solver& solver,
+                         const NewPoints& points, const InterfaceBand& band,
+                         const std::vector<bool>& stressed_layers);
+
+}  // namespace hvi::coupling

@@ -1,0 +1,201 @@
+// The MPM zone growing over the far field (coupling/zone_growth.hpp), on the bar of
+// test_far_field_coupling.cpp (MPM left of x = 60 h, finite elements right of it, rollers on the
+// long sides): the take-over of the elements in [60 h, 70 h] by material points
+//  - keeps a rigid translation rigid: every particle and node moves on at V, to round-off;
+//  - keeps a uniform strain uniform: the new points carry its stress and strain energy, so the
+//    new interface at 70 h feels no force in the next step beyond the order of the displacement
+//    over the cell size (the points sit at X + u);
+//  - conserves momentum exactly and books the energy it does not carry over, which is zero to
+//    round-off in both cases (the points hold the cells' mass, kinetic and strain energy);
+// and grown_zone moves only the sides that damaged points reach, by its step, up to the limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coupling/far_field_coupling.hpp"
+#include "coupling/zone_growth.hpp"
+#include "fem/far_field.hpp"
+#include "geometry/lattice_sampler.hpp"
+#include "geometry/primitives.hpp"
+#include "tests/mpm/mpm_test_helpers.hpp"
+
+namespace hvi::coupling {
+namespace {
+
+using mpm::BoundaryType;
+using mpm::GridBoundary;
+
+constexpr double h = 1e-3;
+constexpr int mpm_cells = 60, fe_cells = 60, grown_cells = 10;
+constexpr double rho = 2700, E = 70e9, nu = 0.33;
+const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu)), M = lambda + 2 * mu;
+
+mpm::GridGeometry bar_grid() { return mpm::test::grid({-4 * h, 0, 0}, h, {130, 2, 2}); }
+
+struct Bar {
+  std::unique_ptr<mpm::Solver> solver;
+  std::unique_ptr<fem::FarField> far;
+  std::unique_ptr<FarFieldCoupling> coupling;
+  Bar() {
+    mpm::SolverSettings s;
+    s.shape = mpm::ShapeFunction::cpgimp;
+    s.scheme = mpm::UpdateScheme::musl;
+    solver = std::make_unique<mpm::Solver>(
+        bar_grid(), s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
+        std::vector<std::string>{"bar"},
+        std::vector<GridBoundary>{{1, 0, true, BoundaryType::symmetry}, {1, 2, false, BoundaryType::symmetry},
+                                  {2, 0, true, BoundaryType::symmetry}, {2, 2, false, BoundaryType::symmetry}});
+    mpm::test::add_body(*solver, geometry::Box({0, 0, 0}, {mpm_cells * h, 2 * h, 2 * h}), 2, 0, 0,
+                        mpm::test::uniform({0, 0, 0}));
+    fem::LayeredMesh m;
+    m.lower = {mpm_cells * h, 0};
+    m.x_steps.assign(fe_cells, h);
+    m.y_steps.assign(2, h);
+    m.layers = {{"bar", 0, 2 * h, 2, fem::isotropic(E, nu), rho, {}, {}, {}}};
+    m.degree = 1;
+    far = std::make_unique<fem::FarField>(m);
+    const auto x = far->reference_positions();
+    for (std::size_t a = 0; a < far->node_count(); ++a) {
+      if (x[3 * a + 1] < 1e-12 || x[3 * a + 1] > 2 * h - 1e-12) far->fix(a, 0b010);
+      if (x[3 * a + 2] < 1e-12 || x[3 * a + 2] > 2 * h - 1e-12) far->fix(a, 0b100);
+    }
+    coupling = std::make_unique<FarFieldCoupling>(*far, bar_grid(), InterfaceBand{{-4 * h, 0, mpm_cells * h, 2 * h}, h});
+    solver->add_coupling(coupling.get());
+  }
+  // The points of [60 h, 70 h], sampled as the bar's were.
+  NewPoints grown_points() const {
+    const auto g = bar_grid();
+    const auto s = geometry::sample_lattice(geometry::Box({mpm_cells * h, 0, 0}, {(mpm_cells + grown_cells) * h, 2 * h, 2 * h}),
+                                            h / 2, {g.origin[0], g.origin[1], g.origin[2]});
+    NewPoints p;
+    p.position = s.position;
+    p.volume = s.volume;
+    p.density.assign(s.size(), rho);
+    p.body.assign(s.size(), 0);
+    p.material.assign(s.size(), 0);
+    return p;
+  }
+  TakeoverReport grow() {
+    return take_over(*coupling, *far, *solver, grown_points(),
+                     InterfaceBand{{-4 * h, 0, (mpm_cells + grown_cells) * h, 2 * h}, h}, {true});
+  }
+  double mass() const {
+    double m = 0;
+    for (const double x : solver->particles().mass) m += x;
+    for (const double x : far->lumped_mass()) m += x;
+    return m;
+  }
+};
+
+TEST(ZoneGrowth, TakeOverKeepsARigidTranslation) {
+  mpm::test::Threads one(1);
+  Bar B;
+  const double V = 3.0;
+  auto& P = B.solver->particles();
+  for (std::size_t p = 0; p < P.size(); ++p) P.velocity[3 * p] = V;
+  for (std::size_t a = 0; a < B.far->node_count(); ++a) B.far->velocity()[3 * a] = V;
+  B.solver->initialise();
+  for (int s = 0; s < 5; ++s) B.solver->step();
+  const double mass = B.mass(), p0 = B.solver->energy().momentum[0], e0 = B.solver->energy().total();
+  const std::size_t n0 = P.size();
+  const TakeoverReport r = B.grow();
+  EXPECT_EQ(r.points, 10u * 4u * 4u * 2u);  // 10 cells x 2 x 2, 8 points per cell
+  EXPECT_EQ(P.size(), n0 + r.points);
+  EXPECT_EQ(r.cells, 10u * 2u * 2u);
+  EXPECT_EQ(B.coupling->tied_node_count(), 18u);  // the nodes at 70 h and 71 h
+  EXPECT_NEAR(B.mass(), mass, 1e-12 * mass);
+  EXPECT_NEAR(B.solver->energy().momentum[0], p0, 1e-12 * std::abs(p0));
+  EXPECT_LT(r.momentum_correction, 1e-12 * V);
+  EXPECT_NEAR(r.point_energy, r.far_field_energy, 1e-12 * r.far_field_energy);
+  EXPECT_NEAR(B.solver->energy().total(), e0, 1e-12 * e0);
+  for (int s = 0; s < 20; ++s) B.solver->step();
+  double worst = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) worst = std::max(worst, std::abs(P.velocity[3 * p] - V));
+  for (std::size_t a = 0; a < B.far->node_count(); ++a)
+    if (B.far->lumped_mass()[a] > 0) worst = std::max(worst, std::abs(B.far->velocity()[3 * a] - V));
+  EXPECT_LT(worst, 1e-12 * V);
+  EXPECT_NEAR(B.solver->energy().momentum[0], p0, 1e-12 * std::abs(p0));
+}
+
+TEST(ZoneGrowth, TakeOverKeepsAUniformStrain) {
+  mpm::test::Threads one(1);
+  Bar B;
+  const double eps = 1e-4;
+  auto& P = B.solver->particles();
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    P.stress[6 * p + mpm::sym::xx] = M * eps;
+    P.stress[6 * p + mpm::sym::yy] = P.stress[6 * p + mpm::sym::zz] = lambda * eps;
+    P.internal_energy[p] = 0.5 * M * eps * eps / rho;
+  }
+  const auto x = B.far->reference_positions();
+  for (std::size_t a = 0; a < B.far->node_count(); ++a) B.far->displacement()[3 * a] = eps * x[3 * a];
+  B.solver->initialise();
+  const double e0 = B.solver->energy().total();
+  const std::size_t n0 = P.size();
+  const TakeoverReport r = B.grow();
+  // The new points: stress M eps, lambda eps; strain energy 1/2 M eps^2 per volume, as the cells.
+  for (std::size_t p = n0; p < P.size(); ++p) {
+    EXPECT_NEAR(P.stress[6 * p + mpm::sym::xx], M * eps, 1e-9 * M * eps);
+    EXPECT_NEAR(P.stress[6 * p + mpm::sym::yy], lambda * eps, 1e-9 * M * eps);
+    EXPECT_NEAR(P.volume[p], P.volume0[p] * (1 + eps), 1e-12 * P.volume0[p]);
+  }
+  const double cells = 0.5 * M * eps * eps * grown_cells * h * 4 * h * h;
+  EXPECT_NEAR(r.far_field_energy, cells, 1e-9 * cells);
+  EXPECT_NEAR(r.point_energy, cells, 1e-9 * cells);
+  EXPECT_NEAR(B.solver->energy().total(), e0, 1e-9 * e0);
+  // One step: only the free far end moves; the new interface at 70 h feels nothing.
+  B.solver->step();
+  const auto v = B.far->velocity();
+  double far_end = 0, interface = 0;
+  for (std::size_t a = 0; a < B.far->node_count(); ++a) {
+    if (x[3 * a] > (mpm_cells + fe_cells) * h - 1e-9) far_end = std::max(far_end, std::abs(v[3 * a]));
+    if (x[3 * a] < (mpm_cells + grown_cells + 4) * h) interface = std::max(interface, std::abs(v[3 * a]));
+  }
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.position[3 * p] > (mpm_cells - 4) * h) interface = std::max(interface, std::abs(P.velocity[3 * p]));
+  EXPECT_GT(far_end, 1e-3);
+  // The new points sit where the far field has moved their material, X + eps X (0.006-0.007 h
+  // from X), while the bar's first points were left at X with their stress set; so the patch
+  // holds to the order of that offset, u / h, not to round-off as with no take-over.
+  EXPECT_LT(interface, eps * (mpm_cells + grown_cells) * far_end);
+}
+
+TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
+  mpm::Particles P;
+  P.add_field("damage", mpm::FieldKind::scalar, "1");
+  const double pts[][3] = {{9.5e-3, 2e-3, 0}, {3e-3, 9.9e-3, 0}, {1e-3, 1e-3, 0}, {30e-3, 3e-3, 0}};
+  const double D[] = {1.0, 0.5, 1.0, 1.0};  // reaches x1; too little damage; interior; far outside
+  for (int k = 0; k < 4; ++k) {
+    const std::size_t p = P.append(pts[k], 1e-9, 1e-6, 1, 0);
+    P.field("damage")[p] = D[k];
+  }
+  ZoneGrowth g;
+  g.limit = {0, 0, 12e-3, 20e-3};
+  g.step = 2e-3;
+  g.margin = 1e-3;
+  g.movable = {false, false, true, true};
+  const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
+  const std::vector<std::int64_t> panel{1};
+  EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 10e-3}));
+  g.damage = 0.5;  // now the second point reaches y1 too
+  EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
+  // At the limit the side stays; other bodies' damage does not count.
+  EXPECT_EQ(grown_zone(P, panel, {0, 0, 12e-3, 10e-3}, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
+  EXPECT_EQ(grown_zone(P, std::vector<std::int64_t>{2}, zone, g), zone);
+  // The interior point reaches x0 and y0, which lie on symmetry planes and stay.
+  EXPECT_EQ(grown_zone(P, panel, zone, g)[0], 0.0);
+}
+
+// The ring a grown zone adds tiles it: no overlap, nothing missing, no box where a side stays.
+TEST(ZoneGrowth, TheRingsBoxesTileIt) {
+  const std::array<double, 4> zone{0, 0, 3e-3, 3e-3}, grown{-1e-3, 0, 5e-3, 4e-3};
+  const auto boxes = ring(zone, grown);
+  double area = 0;
+  for (const auto& r : boxes) area += (r[2] - r[0]) * (r[3] - r[1]);
+  EXPECT_NEAR(area, 6e-3 * 4e-3 - 9e-6, 1e-18);
+  EXPECT_EQ(boxes.size(), 3u);  // above, left, right: nothing below (y0 stays)
+  EXPECT_TRUE(ring(zone, zone).empty());
+}
+
+}  // namespace
+}  // namespace hvi::coupling
