@@ -53,8 +53,9 @@ class FarFieldCoupling : public mpm::GridCoupling {
   void take_from_grid(const mpm::SparseGrid& grid, double time, double dt) override;
   double stable_time_step() const override;
   // The far field's kinetic energy 1/2 sum m v^2 (half-step velocities), its internal energy
-  // (elastic strain energy, 1/2 u.K u when elastic, plus the plastic work of J2 facesheets) and
-  // momentum; the solver adds them to its energy balance.
+  // (elastic strain energy, 1/2 u.K u when elastic, plus the plastic work of J2 facesheets, plus
+  // the energy take-overs did not carry over to points) and momentum; the solver adds them to its
+  // energy balance.
   mpm::CoupledEnergy energy() const override;
   // far_field_displacement and far_field_velocity, 3 per node, and with plastic facesheets their
   // plastic state and work, for checkpoints.
