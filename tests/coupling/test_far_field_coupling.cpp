@@ -9,57 +9,12 @@
 #include <numbers>
 
 #include "coupling/far_field_coupling.hpp"
-#include "fem/far_field.hpp"
-#include "geometry/primitives.hpp"
-#include "tests/mpm/mpm_test_helpers.hpp"
+#include "tests/coupling/coupled_bar.hpp"
 
 namespace hvi::coupling {
 namespace {
 
-using mpm::BoundaryType;
-using mpm::GridBoundary;
-
-constexpr double h = 1e-3;                     // grid cell and far-field element, m
-constexpr int mpm_cells = 60, fe_cells = 60;   // bar x in [0, 120 h]: MPM left, FE right
-constexpr double rho = 2700, E = 70e9, nu = 0.33;
-const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-const double M = lambda + 2 * mu, c = std::sqrt(M / rho);  // constrained modulus, bar wave speed
-
-mpm::GridGeometry bar_grid() { return mpm::test::grid({-4 * h, 0, 0}, h, {130, 2, 2}); }
-
-// Rollers on y = 0, 2h and z = 0, 2h.
-std::vector<GridBoundary> rollers() {
-  return {GridBoundary{1, 0, true, BoundaryType::symmetry}, GridBoundary{1, 2, false, BoundaryType::symmetry},
-          GridBoundary{2, 0, true, BoundaryType::symmetry}, GridBoundary{2, 2, false, BoundaryType::symmetry}};
-}
-
-std::unique_ptr<mpm::Solver> bar_solver(double length_cells) {
-  mpm::SolverSettings s;
-  s.shape = mpm::ShapeFunction::cpgimp;
-  s.scheme = mpm::UpdateScheme::musl;
-  auto solver = std::make_unique<mpm::Solver>(
-      bar_grid(), s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
-      std::vector<std::string>{"bar"}, rollers());
-  mpm::test::add_body(*solver, geometry::Box({0, 0, 0}, {length_cells * h, 2 * h, 2 * h}), 2, 0, 0,
-                      mpm::test::uniform({0, 0, 0}));
-  return solver;
-}
-
-std::unique_ptr<fem::FarField> bar_far_field() {
-  fem::LayeredMesh m;
-  m.lower = {mpm_cells * h, 0};
-  m.x_steps.assign(fe_cells, h);
-  m.y_steps.assign(2, h);
-  m.layers = {{"bar", 0, 2 * h, 2, fem::isotropic(E, nu), rho, {}, {}, {}}};
-  m.degree = 1;
-  auto f = std::make_unique<fem::FarField>(m);
-  const auto x = f->reference_positions();
-  for (std::size_t a = 0; a < f->node_count(); ++a) {
-    if (x[3 * a + 1] < 1e-12 || x[3 * a + 1] > 2 * h - 1e-12) f->fix(a, 0b010);
-    if (x[3 * a + 2] < 1e-12 || x[3 * a + 2] > 2 * h - 1e-12) f->fix(a, 0b100);
-  }
-  return f;
-}
+using namespace test;
 
 // The MPM zone is the bar left of x = 60 h; far-field nodes up to one cell beyond are tied.
 InterfaceBand bar_band() { return {{-4 * h, 0, mpm_cells * h, 2 * h}, h}; }
@@ -114,24 +69,10 @@ TEST(FarFieldCoupling, UniformStrainGivesNoInterfaceForce) {
   Hybrid H;
   const double eps = 1e-4;
   auto& P = H.solver->particles();
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    P.stress[6 * p + mpm::sym::xx] = M * eps;
-    P.stress[6 * p + mpm::sym::yy] = P.stress[6 * p + mpm::sym::zz] = lambda * eps;
-    P.internal_energy[p] = 0.5 * M * eps * eps / rho;
-  }
-  auto u = H.far->displacement();
-  const auto x = H.far->reference_positions();
-  for (std::size_t a = 0; a < H.far->node_count(); ++a) u[3 * a] = eps * x[3 * a];
+  strain_uniformly(P, *H.far, eps);
   H.solver->initialise();
   H.solver->step();
-  const auto v = H.far->velocity();
-  double far_end = 0, interface = 0;
-  for (std::size_t a = 0; a < H.far->node_count(); ++a) {
-    if (x[3 * a] > (mpm_cells + fe_cells) * h - 1e-9) far_end = std::max(far_end, std::abs(v[3 * a]));
-    if (x[3 * a] < (mpm_cells + 4) * h) interface = std::max(interface, std::abs(v[3 * a]));
-  }
-  for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.position[3 * p] > (mpm_cells - 4) * h) interface = std::max(interface, std::abs(P.velocity[3 * p]));
+  const auto [far_end, interface] = patch_speeds(P, *H.far, mpm_cells * h);
   EXPECT_GT(far_end, 1e-3);  // the free end starts to move (the traction M eps over one node)
   EXPECT_LT(interface, 1e-10 * far_end);
 }

@@ -14,51 +14,21 @@
 
 #include "coupling/far_field_coupling.hpp"
 #include "coupling/zone_growth.hpp"
-#include "fem/far_field.hpp"
 #include "geometry/lattice_sampler.hpp"
-#include "geometry/primitives.hpp"
-#include "tests/mpm/mpm_test_helpers.hpp"
+#include "tests/coupling/coupled_bar.hpp"
 
 namespace hvi::coupling {
 namespace {
 
-using mpm::BoundaryType;
-using mpm::GridBoundary;
+using namespace test;
 
-constexpr double h = 1e-3;
-constexpr int mpm_cells = 60, fe_cells = 60, grown_cells = 10;
-constexpr double rho = 2700, E = 70e9, nu = 0.33;
-const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu)), M = lambda + 2 * mu;
-
-mpm::GridGeometry bar_grid() { return mpm::test::grid({-4 * h, 0, 0}, h, {130, 2, 2}); }
+constexpr int grown_cells = 10;
 
 struct Bar {
   std::unique_ptr<mpm::Solver> solver;
   std::unique_ptr<fem::FarField> far;
   std::unique_ptr<FarFieldCoupling> coupling;
-  Bar() {
-    mpm::SolverSettings s;
-    s.shape = mpm::ShapeFunction::cpgimp;
-    s.scheme = mpm::UpdateScheme::musl;
-    solver = std::make_unique<mpm::Solver>(
-        bar_grid(), s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
-        std::vector<std::string>{"bar"},
-        std::vector<GridBoundary>{{1, 0, true, BoundaryType::symmetry}, {1, 2, false, BoundaryType::symmetry},
-                                  {2, 0, true, BoundaryType::symmetry}, {2, 2, false, BoundaryType::symmetry}});
-    mpm::test::add_body(*solver, geometry::Box({0, 0, 0}, {mpm_cells * h, 2 * h, 2 * h}), 2, 0, 0,
-                        mpm::test::uniform({0, 0, 0}));
-    fem::LayeredMesh m;
-    m.lower = {mpm_cells * h, 0};
-    m.x_steps.assign(fe_cells, h);
-    m.y_steps.assign(2, h);
-    m.layers = {{"bar", 0, 2 * h, 2, fem::isotropic(E, nu), rho, {}, {}, {}}};
-    m.degree = 1;
-    far = std::make_unique<fem::FarField>(m);
-    const auto x = far->reference_positions();
-    for (std::size_t a = 0; a < far->node_count(); ++a) {
-      if (x[3 * a + 1] < 1e-12 || x[3 * a + 1] > 2 * h - 1e-12) far->fix(a, 0b010);
-      if (x[3 * a + 2] < 1e-12 || x[3 * a + 2] > 2 * h - 1e-12) far->fix(a, 0b100);
-    }
+  Bar() : solver(bar_solver(mpm_cells)), far(bar_far_field()) {
     coupling = std::make_unique<FarFieldCoupling>(*far, bar_grid(), InterfaceBand{{-4 * h, 0, mpm_cells * h, 2 * h}, h});
     solver->add_coupling(coupling.get());
   }
@@ -122,13 +92,7 @@ TEST(ZoneGrowth, TakeOverKeepsAUniformStrain) {
   Bar B;
   const double eps = 1e-4;
   auto& P = B.solver->particles();
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    P.stress[6 * p + mpm::sym::xx] = M * eps;
-    P.stress[6 * p + mpm::sym::yy] = P.stress[6 * p + mpm::sym::zz] = lambda * eps;
-    P.internal_energy[p] = 0.5 * M * eps * eps / rho;
-  }
-  const auto x = B.far->reference_positions();
-  for (std::size_t a = 0; a < B.far->node_count(); ++a) B.far->displacement()[3 * a] = eps * x[3 * a];
+  strain_uniformly(P, *B.far, eps);
   B.solver->initialise();
   const double e0 = B.solver->energy().total();
   const std::size_t n0 = P.size();
@@ -145,14 +109,7 @@ TEST(ZoneGrowth, TakeOverKeepsAUniformStrain) {
   EXPECT_NEAR(B.solver->energy().total(), e0, 1e-9 * e0);
   // One step: only the free far end moves; the new interface at 70 h feels nothing.
   B.solver->step();
-  const auto v = B.far->velocity();
-  double far_end = 0, interface = 0;
-  for (std::size_t a = 0; a < B.far->node_count(); ++a) {
-    if (x[3 * a] > (mpm_cells + fe_cells) * h - 1e-9) far_end = std::max(far_end, std::abs(v[3 * a]));
-    if (x[3 * a] < (mpm_cells + grown_cells + 4) * h) interface = std::max(interface, std::abs(v[3 * a]));
-  }
-  for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.position[3 * p] > (mpm_cells - 4) * h) interface = std::max(interface, std::abs(P.velocity[3 * p]));
+  const auto [far_end, interface] = patch_speeds(P, *B.far, (mpm_cells + grown_cells) * h);
   EXPECT_GT(far_end, 1e-3);
   // The new points sit where the far field has moved their material, X + eps X (0.006-0.007 h
   // from X), while the bar's first points were left at X with their stress set; so the patch
