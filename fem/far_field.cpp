@@ -60,6 +60,15 @@ Tensor<2, dim, N> orthotropic_stress(const std::array<N, 9>& C, const Tensor<2, 
   return s;
 }
 
+// Voigt slot k of a symmetric tensor: its (row, column).
+constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+
+// Whether a cell centred at (x, y) lies inside the in-plane box (x0, y0, x1, y1): the mesh's hole
+// and remove_cells take out the same cells.
+bool centre_inside(double x, double y, const std::array<double, 4>& box) {
+  return x > box[0] && x < box[2] && y > box[1] && y < box[3];
+}
+
 }  // namespace
 
 std::vector<double> graded_steps(double a, double b, double fine_lower, double fine_upper,
@@ -175,7 +184,6 @@ struct FarField::Impl {
   // The total strain less the committed plastic strain in plastic lanes.
   Tensor<2, dim, VA> elastic_strain(unsigned cell, unsigned q, Tensor<2, dim, VA> e) const {
     if (!any_plastic() || plastic_slot[cell] < 0) return e;
-    static constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
     for (unsigned lane = 0; lane < W; ++lane) {
       if (!lane_is_plastic(cell, lane)) continue;
       const double* ep = state(cell, q, lane);
@@ -433,8 +441,7 @@ void FarField::Impl::build_mesh() {
     double y = spec.lower[1];
     for (std::size_t j = 0; j < spec.y_steps.size(); ++j) {
       const double yc = y + 0.5 * spec.y_steps[j];
-      const bool in_hole = spec.hole && xc > (*spec.hole)[0] && xc < (*spec.hole)[2] &&
-                           yc > (*spec.hole)[1] && yc < (*spec.hole)[3];
+      const bool in_hole = spec.hole && centre_inside(xc, yc, *spec.hole);
       for (std::size_t k = 0; k < z_steps.size(); ++k) {
         ids[i][j][k] = in_hole ? numbers::invalid_material_id : z_layer[k];
         kept += !in_hole;
@@ -778,7 +785,6 @@ std::vector<FarField::PointSample> FarField::sample(std::span<const double> poin
       r.velocity[c] += N * I.v[dofs[i]];
       for (int d = 0; d < dim; ++d) H[c][d] += g[d] / (I.lines[d][b[d] + 1] - I.lines[d][b[d]]) * I.u[dofs[i]];
     }
-    static constexpr int voigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
     for (int k = 0; k < 6; ++k) r.strain[k] = 0.5 * (H[voigt[k][0]][voigt[k][1]] + H[voigt[k][1]][voigt[k][0]]);
     Tensor<2, dim> eps;
     for (int k = 0; k < 6; ++k) eps[voigt[k][0]][voigt[k][1]] = eps[voigt[k][1]][voigt[k][0]] = r.strain[k];
@@ -817,7 +823,7 @@ std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
       const auto it = I.matrix_free.get_cell_iterator(cell, lane);
       const Point<dim> c = it->center();
       const std::size_t l = Impl::W * cell + lane;
-      if (I.lane_removed[l] || !(c[0] > box[0] && c[0] < box[2] && c[1] > box[1] && c[1] < box[3])) continue;
+      if (I.lane_removed[l] || !centre_inside(c[0], c[1], box)) continue;
       // No stiffness (so no stress, force or strain energy), no plastic state, no mass.
       I.lane_removed[l] = 1;
       I.cell_removed[it->active_cell_index()] = 1;
