@@ -16,9 +16,11 @@ bool on_grid_plane(double x, const mpm::GridGeometry& grid, int axis) {
   return std::abs(s - std::round(s)) < 1e-9;
 }
 
-// Element lengths along one axis of the panel [a, b] with the zone [z0, z1].
-std::vector<double> axis_steps(double a, double b, double z0, double z1, const PanelFarFieldSpec& s,
-                               double h, double max_element, int axis, const mpm::GridGeometry& grid) {
+// Element lengths along one axis of the panel [a, b] with the zone [z0, z1], one grid cell long
+// over the fine region [l0, l1] (the zone, or the limit of a zone that grows) and its band.
+std::vector<double> axis_steps(double a, double b, double z0, double z1, double l0, double l1,
+                               const PanelFarFieldSpec& s, double h, double max_element, int axis,
+                               const mpm::GridGeometry& grid) {
   const char* name = axis == 0 ? "x" : "y";
   if (!(a <= z0 && z0 < z1 && z1 <= b))
     throw std::invalid_argument(std::string("far field: the MPM zone's ") + name +
@@ -26,9 +28,12 @@ std::vector<double> axis_steps(double a, double b, double z0, double z1, const P
   if (!on_grid_plane(z0, grid, axis) || !on_grid_plane(z1, grid, axis))
     throw std::invalid_argument(std::string("far field: the MPM zone's ") + name +
                                 " bounds must lie on grid planes, so the interface nodes are grid nodes");
-  // The fine region: the zone plus the band, as far as the panel reaches (a panel edge on a
-  // symmetry plane may coincide with the zone's).
-  const double f0 = std::max(a, z0 - s.band_elements * h), f1 = std::min(b, z1 + s.band_elements * h);
+  if (!(a <= l0 && l0 <= z0 && z1 <= l1 && l1 <= b) || !on_grid_plane(l0, grid, axis) || !on_grid_plane(l1, grid, axis))
+    throw std::invalid_argument(std::string("far field: the growth limit's ") + name +
+                                " range must hold the zone's, lie inside the panel and on grid planes");
+  // The fine region plus the band, as far as the panel reaches (a panel edge on a symmetry plane
+  // may coincide with the zone's).
+  const double f0 = std::max(a, l0 - s.band_elements * h), f1 = std::min(b, l1 + s.band_elements * h);
   auto snap = [&](double x) { return grid.origin[axis] + std::round((x - grid.origin[axis]) / h) * h; };
   return fem::graded_steps(a, b, a < f0 ? snap(f0) : a, b > f1 ? snap(f1) : b, h, s.ratio, max_element, 0);
 }
@@ -55,8 +60,9 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   m.finite_strain = spec.finite_strain;
   m.lower = {panel.lower[0], panel.lower[1]};
   const auto& z = spec.zone;
-  m.x_steps = axis_steps(panel.lower[0], panel.upper[0], z[0], z[2], spec, h, max_element, 0, grid);
-  m.y_steps = axis_steps(panel.lower[1], panel.upper[1], z[1], z[3], spec, h, max_element, 1, grid);
+  const auto& l = spec.growth_limit ? *spec.growth_limit : z;
+  m.x_steps = axis_steps(panel.lower[0], panel.upper[0], z[0], z[2], l[0], l[2], spec, h, max_element, 0, grid);
+  m.y_steps = axis_steps(panel.lower[1], panel.upper[1], z[1], z[3], l[1], l[3], spec, h, max_element, 1, grid);
   m.hole = spec.zone;
   const auto rear = panel.rear_box(), core = panel.core_box(), front = panel.front_box();
   auto iso = [](const SolidMaterial& s) { return fem::isotropic(s.youngs_modulus, s.poisson_ratio); };

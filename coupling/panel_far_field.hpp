@@ -30,6 +30,10 @@ struct SolidMaterial {
 struct PanelFarFieldSpec {
   SolidMaterial front, core_wall, rear;
   std::array<double, 4> zone{};  // the MPM zone in plane: x0, y0, x1, y1 on grid planes (m)
+  // A zone that grows (coupling/zone_growth.hpp) up to this box (holding `zone`, on grid planes):
+  // the elements are one grid cell wide over it and its band, so that every band it may grow to
+  // ties nodes that sit on grid nodes. None: a fixed zone.
+  std::optional<std::array<double, 4>> growth_limit;
   int band_elements = 2;         // grid-cell-wide elements beyond the zone
   double ratio = 1.25;           // growth of the element length beyond them
   double max_element = 0;        // m; 0: 6 times the thinner facesheet
@@ -44,7 +48,8 @@ struct PanelFarFieldSpec {
   bool failing_core = false;
 };
 
-// Throws std::invalid_argument when the zone is not on grid planes or not inside the panel, a
+// Throws std::invalid_argument when the zone (or the growth limit) is not on grid planes or not
+// inside the panel, the growth limit does not hold the zone, a
 // yielding core's walls have no hardening (yield stress), a failing core's no damage, or the
 // panel has double walls and its cell pattern is not turned by a multiple of 90 degrees (the
 // core's orthotropic axes must be the panel's).

@@ -77,6 +77,7 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
   const std::size_t first = P.size();
   std::int64_t next_id = 0;
   for (const auto id : P.id) next_id = std::max(next_id, id + 1);
+  report.first_id = next_id;
   P.resize(first + n);
   std::vector<double>* half_width = P.has_field(mpm::Solver::half_width_field) ? &P.field(mpm::Solver::half_width_field) : nullptr;
   std::vector<double>* pressure = P.has_field("eos_pressure") ? &P.field("eos_pressure") : nullptr;

@@ -65,6 +65,7 @@ struct NewPoints {
 
 struct TakeoverReport {
   std::size_t points = 0, cells = 0;
+  std::int64_t first_id = 0;      // the new points' ids: first_id + k for NewPoints' point k
   double far_field_energy = 0.0;  // the far field's loss, J
   double point_energy = 0.0;      // what the new points hold, J
   double momentum_correction = 0.0;  // |dv| of step 3, m/s

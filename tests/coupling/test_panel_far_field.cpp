@@ -1,6 +1,7 @@
 // The far-field mesh of the paper's study panel around a quarter-model MPM zone.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -78,6 +79,32 @@ TEST(PanelFarField, RefusesAZoneOffTheGridPlanesAndTurnedDoubleWalls) {
   s.panel.double_walls = true;
   s.panel.rotation = std::numbers::pi / 6;
   EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
+}
+
+// A zone that grows up to 20 mm: the elements are one grid cell long out to the limit plus the
+// band (20.8 mm), so every band the zone can grow to ties nodes that sit on grid nodes, and
+// beyond they grow to at most 6 facesheet thicknesses; a limit that does not hold the zone or is off the grid planes is refused.
+TEST(PanelFarField, AGrowingZoneHasGridCellElementsOutToItsLimitAndBand) {
+  StudyPanel s;
+  s.spec.growth_limit = std::array<double, 4>{0, 0, 20e-3, 20e-3};
+  const auto mesh = panel_far_field_mesh(s.panel, s.spec, s.grid);
+  double x = 0;
+  int fine = 0;
+  for (const double v : mesh.x_steps) {
+    if (x < 20.8e-3 - 1e-12) {
+      EXPECT_NEAR(v, 0.4e-3, 1e-15) << "at x = " << x;
+      ++fine;
+    }
+    EXPECT_LE(v, 3e-3 * (1 + 1e-12));  // 6 facesheet thicknesses
+    x += v;
+  }
+  EXPECT_EQ(fine, 52);  // 20.8 mm of 0.4 mm cells
+  EXPECT_NEAR(x, 30e-3, 1e-15);
+  for (const auto& bad : {std::array<double, 4>{0, 0, 8.8e-3, 20e-3}, std::array<double, 4>{0, 0, 20.1e-3, 20e-3},
+                          std::array<double, 4>{0, 0, 31e-3, 20e-3}}) {
+    s.spec.growth_limit = bad;
+    EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
+  }
 }
 
 // Double walls: the core is heavier by the ribbon walls and stiffer in shear along the ribbon (y'
