@@ -86,6 +86,10 @@ std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std:
   return geometry::clip(std::move(solid), {body.clip->lower, body.clip->upper});
 }
 
+std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t b, const geometry::Bounds& box) {
+  return geometry::clip(uncut_solid(scene, scene.bodies[b]), box);
+}
+
 geometry::SamplingSettings sampling_settings(const scene::Scene& scene, std::size_t b) {
   const scene::BodySettings& body = scene.bodies[b];
   geometry::SamplingSettings s;

@@ -19,6 +19,9 @@ geometry::HoneycombPanel panel_geometry(const scene::PanelSettings& panel);
 // self-intersecting, inside-out, unreadable) or reaches outside the grid throws
 // scene::SceneError located at the body's mesh.file key: a scene error, nothing is run.
 std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t body);
+// The body's solid cut to `box` instead of its clip (a hybrid's panel over the ring its MPM zone
+// grows by).
+std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t body, const geometry::Bounds& box);
 
 // Lattice spacing (cell size / particles per cell) anchored at the grid origin, the zones of the
 // [[refinement]] entries that apply to the body, and the panel's thin-wall model.

@@ -54,16 +54,28 @@ unsigned conditions(const double* x, const scene::Scene& s, const scene::FarFiel
 
 }  // namespace
 
-Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
+Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
   const scene::FarFieldSettings& f = *scene.far_field;
   geometry::HoneycombPanel panel = panel_geometry(scene.panels[f.panel]);
   panel.lower = {f.extent[0], f.extent[1]};
   panel.upper = {f.extent[2], f.extent[3]};
-  coupling::PanelFarFieldSpec spec;
-  spec.front = solid(scene, panel_body(scene, f.panel, 0), f.plastic_faces, f.failing_faces);
-  spec.core_wall = solid(scene, panel_body(scene, f.panel, 1), f.yielding_core, f.failing_core);
-  spec.rear = solid(scene, panel_body(scene, f.panel, 2), f.plastic_faces, f.failing_faces);
+  for (int part = 0; part < 3; ++part) panel_bodies_[part] = panel_body(scene, f.panel, part);
+  coupling::PanelFarFieldSpec& spec = spec_;
+  spec.front = solid(scene, panel_bodies_[0], f.plastic_faces, f.failing_faces);
+  spec.core_wall = solid(scene, panel_bodies_[1], f.yielding_core, f.failing_core);
+  spec.rear = solid(scene, panel_bodies_[2], f.plastic_faces, f.failing_faces);
   spec.zone = f.zone;
+  if (f.grow) {
+    spec.growth_limit = f.grow->limit;
+    coupling::ZoneGrowth g;
+    g.limit = f.grow->limit;
+    g.step = f.grow->step;
+    g.margin = f.grow->margin;
+    g.damage = f.grow->damage;
+    // A side on the panel's edge (a symmetry plane of a half or quarter model) stays.
+    for (int side = 0; side < 4; ++side) g.movable[side] = f.zone[side] != f.extent[side];
+    growth_ = g;
+  }
   spec.band_elements = f.band_elements;
   spec.ratio = f.growth;
   spec.max_element = f.max_element;
@@ -87,6 +99,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) {
     }
   coupling_ = std::make_unique<coupling::FarFieldCoupling>(*far_field_, grid, coupling::panel_interface_band(spec, grid),
                                                            scene.grid.flip, f.safety);
+  if (growth_) coupling_->enable_growth();
   solver.add_coupling(coupling_.get());
 }
 
@@ -111,6 +124,13 @@ void Hybrid::write_snapshot(const fs::path& dir, std::int64_t step, double time)
 }
 
 void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
+  if (growth_ && coupling_->band().zone != spec_.zone) {
+    // The checkpoint gave the band of the grown zone: the far field gives up its cells again.
+    spec_.zone = coupling_->band().zone;
+    const coupling::InterfaceBand band = coupling_->band();
+    far_field_->remove_cells(band.zone);
+    coupling_->retie(band);
+  }
   // far_field.pvd lists <DataSet timestep="t" ... file="far_field/far_field_<step>.vtu"/>.
   std::ifstream in(dir / "far_field.pvd");
   const std::regex entry(R"re(timestep="([^"]+)".*file="(far_field/far_field_(\d+)\.vtu)")re");
@@ -124,6 +144,56 @@ void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
       else
         fs::remove(dir / m[2].str());
     }
+}
+
+coupling::NewPoints Hybrid::sample_ring(const std::array<double, 4>& box, const mpm::Solver& solver) const {
+  coupling::NewPoints points;
+  for (const std::size_t b : panel_bodies_) {
+    // The body's clip in a hybrid is the zone cut by the panel's clip: keep its z range.
+    const auto& clip = *scene_.bodies[b].clip;
+    const geometry::Bounds cut{{box[0], box[1], clip.lower[2]}, {box[2], box[3], clip.upper[2]}};
+    const geometry::PointSet set = sample_body(scene_, b, *make_body_solid(scene_, b, cut));
+    const std::size_t material = scene_.bodies[b].material;
+    const double density = solver.materials()[material]->reference_density();
+    points.position.insert(points.position.end(), set.position.begin(), set.position.end());
+    points.volume.insert(points.volume.end(), set.volume.begin(), set.volume.end());
+    if (set.half_width.size() == 3 * set.size())
+      points.half_width.insert(points.half_width.end(), set.half_width.begin(), set.half_width.end());
+    points.density.insert(points.density.end(), set.size(), density);
+    points.body.insert(points.body.end(), set.size(), static_cast<std::int64_t>(b));
+    points.material.insert(points.material.end(), set.size(), static_cast<std::int64_t>(material));
+  }
+  // Half-widths only when every body has them (GIMP domains of the sampler's points).
+  if (points.half_width.size() != 3 * points.size()) points.half_width.clear();
+  return points;
+}
+
+std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
+  if (!growth_) return std::nullopt;
+  const std::array<double, 4> zone = coupling_->band().zone;
+  const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
+  const std::array<double, 4> grown = coupling::grown_zone(solver.particles(), bodies, zone, *growth_);
+  if (grown == zone) return std::nullopt;
+  coupling::NewPoints points;
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  for (const auto& box : coupling::ring(zone, grown)) {
+    const coupling::NewPoints part = sample_ring(box, solver);
+    append(points.position, part.position);
+    append(points.volume, part.volume);
+    append(points.half_width, part.half_width);
+    append(points.density, part.density);
+    append(points.body, part.body);
+    append(points.material, part.material);
+  }
+  if (points.half_width.size() != 3 * points.size()) points.half_width.clear();
+  spec_.zone = grown;
+  // The far field's layers: rear, core, front; the facesheets carry their stress over, the
+  // homogenised core's walls start unstressed (coupling/zone_growth.hpp).
+  const auto report = coupling::take_over(*coupling_, *far_field_, solver, points,
+                                          coupling::panel_interface_band(spec_, grid_geometry(scene_)),
+                                          {true, false, true});
+  last_points_ = std::move(points.position);
+  return report;
 }
 
 std::unique_ptr<Hybrid> make_hybrid(const scene::Scene& scene, mpm::Solver& solver) {

@@ -3,14 +3,18 @@
 // (coupling/panel_far_field.hpp), coupled to the solver through the grid nodes of the interface
 // band (coupling/far_field_coupling.hpp). A scene without [far_field] never constructs one, so
 // nothing of fem/ runs, is allocated or is written for it.
+#include <array>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cases/driver/scene.hpp"
 #include "coupling/far_field_coupling.hpp"
+#include "coupling/panel_far_field.hpp"
+#include "coupling/zone_growth.hpp"
 #include "fem/far_field.hpp"
 #include "mpm/solver.hpp"
 
@@ -20,7 +24,8 @@ class Hybrid {
  public:
   // Builds the far-field mesh from the scene's panel, its conditions (a node on or beyond a
   // [[boundary]] plane takes that condition; clamped edges hold every other outer side), and
-  // adds the coupling to `solver`, which must outlive this. Throws std::invalid_argument.
+  // adds the coupling to `solver`, which must outlive this, as must `scene`. Throws
+  // std::invalid_argument.
   Hybrid(const scene::Scene& scene, mpm::Solver& solver);
 
   const fem::FarField& far_field() const { return *far_field_; }
@@ -30,10 +35,32 @@ class Hybrid {
 
   // DIR/far_field/far_field_<step>.vtu and the collection DIR/far_field.pvd for ParaView.
   void write_snapshot(const std::filesystem::path& dir, std::int64_t step, double time);
-  // A resumed run keeps the snapshots up to `last_step` (read back from far_field.pvd).
+  // A resumed run keeps the snapshots up to `last_step` (read back from far_field.pvd). A zone that
+  // grew (its band read back from the checkpoint) takes its cells out of the far field again.
   void resume(const std::filesystem::path& dir, std::int64_t last_step);
 
+  // A zone that grows ([far_field.zone.grow]): between two steps, grows the zone where the panel's
+  // damage reaches its edge (coupling::grown_zone): the panel's three bodies are sampled over the
+  // ring it adds, as at the start (the lattice anchored at the grid, the thin-wall model, the
+  // refinement zones), and take over the far field's cells there (coupling::take_over). Returns
+  // what was taken over, or nothing when the zone stays.
+  bool growing() const { return growth_.has_value(); }
+  std::optional<coupling::TakeoverReport> grow(mpm::Solver& solver);
+  // The undeformed positions of the points the last growth added (3 per point; the point k has
+  // the id first_id + k of grow()'s report).
+  const std::vector<double>& last_points() const { return last_points_; }
+  // The zone now (x0, y0, x1, y1, m).
+  const std::array<double, 4>& zone() const { return coupling_->band().zone; }
+  // The points a grown zone gets over `box` (in plane, x0, y0, x1, y1): the panel's bodies cut to
+  // it and sampled, undeformed.
+  coupling::NewPoints sample_ring(const std::array<double, 4>& box, const mpm::Solver& solver) const;
+
  private:
+  const scene::Scene& scene_;
+  coupling::PanelFarFieldSpec spec_;
+  std::optional<coupling::ZoneGrowth> growth_;
+  std::array<std::size_t, 3> panel_bodies_{};  // front, core, rear
+  std::vector<double> last_points_;
   std::unique_ptr<fem::FarField> far_field_;
   std::unique_ptr<coupling::FarFieldCoupling> coupling_;
   std::vector<std::pair<double, std::string>> snapshots_;  // (time, file)

@@ -104,7 +104,7 @@ struct OpenRun {
   std::map<std::size_t, fs::path> snapshots;
   analysis::Snapshot first;
   analysis::MirrorPlanes mirror;
-  std::int64_t stride = 1;  // id offset of mirror images (ids never grow: those at t = 0 bound all)
+  std::int64_t stride = 1;  // id offset of mirror images: above every id at t = 0 (a growing zone adds more)
   ParticleData initial;     // `first`, mirrored
   Projectile projectile;
   std::unordered_map<std::int64_t, double> initial_z;  // id -> z at t = 0
@@ -169,13 +169,15 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
   if (now.particles.failed.empty())
     out.notes.push_back(
         "no 'failed' field in the snapshot (no failure model): every particle counts as intact");
-  for (const std::int64_t id : now.particles.id)
-    if (id >= run.stride)
-      throw std::invalid_argument(
-          fmt::format("{}: particle id {} is not in the t = 0 snapshot", now.file.string(), id));
+  // A hybrid's zone that grows adds points after t = 0, with ids beyond those of the first
+  // snapshot: mirror images then need a larger id offset, and the points have no initial state.
+  std::int64_t stride = run.stride;
+  for (const std::int64_t id : now.particles.id) stride = std::max(stride, id + 1);
   out.mirror = run.mirror;
-  const ParticleData& initial = run.initial;
-  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, run.stride);
+  ParticleData remirrored;
+  if (stride != run.stride) remirrored = analysis::mirrored(run.first.particles.view(), out.mirror, stride);
+  const ParticleData& initial = stride == run.stride ? run.initial : remirrored;
+  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, stride);
 
   // The impact axis.
   const Projectile& projectile = run.projectile;
@@ -254,8 +256,24 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     // Not debris: the sheet's own attached material (a bulge, petals), and material that was
     // behind the face from the start (the rest of a panel when only --front is named).
     std::vector<std::size_t> excluded = rear_body >= 0 ? rear_attached : front_attached;
-    for (std::size_t k = 0; k < current.size(); ++k)
-      if (run.initial_z.at(current.id[k]) < z_back - d.threshold) excluded.push_back(k);
+    // z at t = 0; a point added later by a growing zone (a panel layer's) takes its body's
+    // mean z at t = 0, which is its layer's.
+    std::unordered_map<std::int64_t, double> remirrored_z;
+    if (stride != run.stride)
+      for (std::size_t k = 0; k < initial.size(); ++k) remirrored_z.emplace(initial.id[k], initial.position[3 * k + 2]);
+    const auto& initial_z = stride == run.stride ? run.initial_z : remirrored_z;
+    std::unordered_map<std::int64_t, std::pair<double, double>> body_z;  // body -> (sum z, count)
+    for (std::size_t k = 0; k < initial.size(); ++k) {
+      auto& [sum, count] = body_z[initial.body[k]];
+      sum += initial.position[3 * k + 2];
+      count += 1;
+    }
+    for (std::size_t k = 0; k < current.size(); ++k) {
+      const auto it = initial_z.find(current.id[k]);
+      const auto& [sum, count] = body_z[current.body[k]];
+      const double z0 = it != initial_z.end() ? it->second : count > 0 ? sum / count : current.position[3 * k + 2];
+      if (z0 < z_back - d.threshold) excluded.push_back(k);
+    }
     out.debris = analysis::debris_cloud(current.view(), d, excluded);
     out.debris_behind = info.bodies[behind].name;
     out.debris_back_face = z_back;

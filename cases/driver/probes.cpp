@@ -24,47 +24,77 @@ bool in_zone(const std::array<double, 3>& x, const scene::Scene& s) {
 
 }  // namespace
 
-Probes::Probes(const scene::Scene& scene, const mpm::Solver& solver, const Hybrid* hybrid) : hybrid_(hybrid) {
-  const auto& P = solver.particles();
+Probes::Probes(const scene::Scene& scene, const mpm::Solver& solver, const Hybrid* hybrid)
+    : hybrid_(hybrid), cell_(scene.grid.cell_size) {
   for (const auto& m : scene.measures) {
     if (m.kind != "displacement") continue;
-    const std::array<double, 3> x = *m.point;
     Probe probe;
     probe.name = m.name;
+    probe.point = *m.point;
+    probe.body = m.body;
     probe.axis = m.axis;
-    if (hybrid && !in_zone(x, scene)) {
+    if (hybrid && !in_zone(probe.point, scene)) {
       const auto X = hybrid->far_field().reference_positions();
       double best = std::numeric_limits<double>::infinity();
       for (std::size_t a = 0; a < hybrid->far_field().node_count(); ++a)
-        if (const double r2 = distance2(&X[3 * a], x); r2 < best) {
+        if (const double r2 = distance2(&X[3 * a], probe.point); r2 < best) {
           best = r2;
           probe.node = a;
         }
       probe.far_field = true;
     } else {
-      const auto& names = solver.body_names();
-      std::int64_t body = m.body.empty() ? -1 : std::find(names.begin(), names.end(), m.body) - names.begin();
-      double best = std::numeric_limits<double>::infinity();
-      std::size_t nearest = P.size();
-      for (std::size_t p = 0; p < P.size(); ++p)
-        if (body < 0 || P.body[p] == body)
-          if (const double r2 = distance2(&P.position[3 * p], x); r2 < best) {
-            best = r2;
-            nearest = p;
-          }
-      if (nearest == P.size())
+      choose_particles(probe, solver, cell_, 0, {});
+      if (probe.ids.empty())
         throw std::invalid_argument(fmt::format("measure '{}': no particle to probe{}", m.name,
                                                 m.body.empty() ? "" : " in body '" + m.body + "'"));
-      body = P.body[nearest];
-      const double h = scene.grid.cell_size;
-      for (std::size_t p = 0; p < P.size(); ++p)
-        if (P.body[p] == body && distance2(&P.position[3 * p], x) <= std::max(h * h, best)) {
-          probe.slot[P.id[p]] = probe.ids.size();
-          probe.ids.push_back(P.id[p]);
-          probe.reference.insert(probe.reference.end(), &P.position[3 * p], &P.position[3 * p] + 3);
-        }
     }
     probes_.push_back(std::move(probe));
+  }
+}
+
+void Probes::choose_particles(Probe& probe, const mpm::Solver& solver, double h, std::int64_t first_id,
+                              const std::vector<double>& reference) {
+  const auto& P = solver.particles();
+  auto X = [&](std::size_t p) {
+    return reference.empty() ? &P.position[3 * p] : &reference[3 * static_cast<std::size_t>(P.id[p] - first_id)];
+  };
+  const auto& names = solver.body_names();
+  std::int64_t body = probe.body.empty() ? -1 : std::find(names.begin(), names.end(), probe.body) - names.begin();
+  double best = std::numeric_limits<double>::infinity();
+  std::size_t nearest = P.size();
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.id[p] >= first_id && (body < 0 || P.body[p] == body))
+      if (const double r2 = distance2(X(p), probe.point); r2 < best) {
+        best = r2;
+        nearest = p;
+      }
+  probe.ids.clear();
+  probe.reference.clear();
+  probe.slot.clear();
+  if (nearest == P.size()) return;
+  body = P.body[nearest];
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.id[p] >= first_id && P.body[p] == body && distance2(X(p), probe.point) <= std::max(h * h, best)) {
+      probe.slot[P.id[p]] = probe.ids.size();
+      probe.ids.push_back(P.id[p]);
+      probe.reference.insert(probe.reference.end(), X(p), X(p) + 3);
+    }
+}
+
+void Probes::zone_grew(const mpm::Solver& solver, std::int64_t first_id) {
+  const auto& P = solver.particles();
+  for (auto& p : probes_) {
+    if (!p.far_field || hybrid_->far_field().lumped_mass()[p.node] > 0.0) continue;
+    // The points near the node (by their undeformed positions) go on from its reading: each
+    // takes as reference its position now less the node's displacement, so the probe reads the
+    // node's displacement at the take-over plus the points' mean displacement since.
+    choose_particles(p, solver, cell_, first_id, hybrid_->last_points());
+    if (p.ids.empty()) continue;  // no point of the body near the node: it keeps reading the node
+    const auto u = hybrid_->far_field().displacement();
+    for (std::size_t q = 0; q < P.size(); ++q)
+      if (const auto it = p.slot.find(P.id[q]); it != p.slot.end())
+        for (int d = 0; d < 3; ++d) p.reference[3 * it->second + d] = P.position[3 * q + d] - u[3 * p.node + d];
+    p.far_field = false;
   }
 }
 
@@ -85,7 +115,9 @@ void Probes::load(const mpm::io::CheckpointExtras& extras) {
   for (auto& p : probes_) {
     const std::string key = "probe." + p.name;
     p.peak = extras.at(key + ".peak");
-    if (p.far_field) continue;
+    // A probe in the far field that a grown zone moved to its points saved them.
+    if (!extras.contains(key + ".n")) continue;
+    p.far_field = false;
     const auto n = static_cast<std::size_t>(extras.at(key + ".n"));
     p.ids.resize(n);
     p.reference.resize(3 * n);

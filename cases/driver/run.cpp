@@ -303,6 +303,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   progress.start(s);
   wall_start = std::chrono::steady_clock::now();
   const std::int64_t first_step = s.step_count();
+  double particle_steps = 0.0;  // a zone that grows adds particles
   std::int64_t reported_removals = 0;
   int code = success;
   const double end = scene.end_time;
@@ -314,7 +315,19 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       }
       if (scene.max_steps > 0 && s.step_count() >= scene.max_steps) break;
       s.step(end - s.time());
+      particle_steps += static_cast<double>(s.particles().size());
       report_removals(s, s.take_removal_events(), reported_removals);
+      if (hybrid && hybrid->growing()) {
+        auto t = timer.scope("grow the MPM zone");
+        if (const auto r = hybrid->grow(s)) {
+          probes->zone_grew(s, r->first_id);
+          const auto& z = hybrid->zone();
+          fmt::print("  step {}, t = {:.6g} s: the MPM zone grew to [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm: {} points "
+                     "took over {} far-field elements; energy not carried over {:.3g} J of {:.3g} J\n",
+                     s.step_count(), s.time(), 1e3 * z[0], 1e3 * z[2], 1e3 * z[1], 1e3 * z[3], r->points, r->cells,
+                     r->far_field_energy - r->point_energy, r->far_field_energy);
+        }
+      }
       const bool last = s.time() >= end * (1 - 1e-12);
       if (s.step_count() % scene.energy_every == 0 || last) {
         auto t = timer.scope("energy");
@@ -360,7 +373,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   const std::int64_t steps = s.step_count() - first_step;
   const mpm::EnergyReport e = s.energy();
   const double balance = initial_energy != 0.0 ? (e.total() - initial_energy) / initial_energy : 0.0;
-  const double rate = steps * static_cast<double>(particle_count) / std::max(wall, 1e-9);
+  const double rate = particle_steps / std::max(wall, 1e-9);
   const std::size_t peak_memory = peak_memory_bytes();  // of the run, before the hole measurement reads snapshots
   fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
              code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
@@ -451,6 +464,12 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (hybrid) {
     summary.insert("far_field_nodes", static_cast<std::int64_t>(hybrid->far_field().node_count()));
     summary.insert("far_field_elements", static_cast<std::int64_t>(hybrid->far_field().cell_count()));
+    if (hybrid->growing()) {  // only when the scene asks for a zone that grows
+      const auto& z = hybrid->zone();
+      summary.insert("mpm_zone", toml::array{z[0], z[1], z[2], z[3]});
+      summary.insert("far_field_elements_taken_over", static_cast<std::int64_t>(hybrid->far_field().removed_cell_count()));
+      summary.insert("energy_not_carried_over", hybrid->coupling().converted_energy());
+    }
     if (hybrid->far_field().plastic()) {  // only when the scene asks for J2 facesheets or a yielding core
       summary.insert("far_field_max_plastic_strain", hybrid->far_field().max_equivalent_plastic_strain());
       if (scene.far_field->yielding_core)

@@ -134,6 +134,13 @@ struct FarFieldSettings {
   bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
   bool yielding_core = false;  // core = "yielding" or "failing": its out-of-plane stresses capped (walls' Johnson-Cook A)
   bool failing_core = false;   // core = "failing": and dropped to zero where the walls' Johnson-Cook damage reaches 1
+  // [far_field.zone.grow]: the zone grows over the far field where the panel's damage reaches its
+  // edge (coupling/zone_growth.hpp); none: a fixed zone.
+  struct Grow {
+    std::array<double, 4> limit{};  // the largest zone: x0, y0, x1, y1 (m, on grid planes)
+    double step = 0.0, margin = 0.0, damage = 1.0;
+  };
+  std::optional<Grow> grow;
 };
 
 // [contact]: the impactor's bodies (indices into Scene::bodies) and the friction coefficient.

@@ -182,6 +182,63 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
   }
 }
 
+namespace {
+
+// [far_field.zone.grow] of a far field whose zone was read and checked.
+void read_zone_growth(const toml::table& t, Scene& s, const Validated& v, std::vector<Diagnostic>& errors) {
+  auto error = [&](const std::string& key, std::string message) {
+    errors.push_back(v.at("far_field.zone.grow." + key, std::move(message)));
+  };
+  FarFieldSettings& f = *s.far_field;
+  const double h = s.grid.cell_size;
+  FarFieldSettings::Grow g;
+  const auto lower = vec<2>(t, "lower"), upper = vec<2>(t, "upper");
+  g.limit = {lower[0], lower[1], upper[0], upper[1]};
+  g.step = t["step"].value<double>().value_or(8 * h);
+  g.margin = t["margin"].value<double>().value_or(4 * h);
+  g.damage = number(t, "damage");
+  auto& resolved = *(*s.resolved["far_field"].as_table())["zone"].as_table()->get_as<toml::table>("grow");
+  resolved.insert_or_assign("step", g.step);
+  resolved.insert_or_assign("margin", g.margin);
+  for (int d = 0; d < 2; ++d) {
+    const double l0 = g.limit[d], l1 = g.limit[2 + d];
+    if (!(f.extent[d] <= l0 && l0 <= f.zone[d] && f.zone[2 + d] <= l1 && l1 <= f.extent[2 + d])) {
+      error(f.extent[d] <= l0 && l0 <= f.zone[d] ? "upper" : "lower",
+            fmt::format("the limit's {} range [{}, {}] m must hold the zone's [{}, {}] m and lie inside the "
+                        "panel's [{}, {}] m", "xy"[d], l0, l1, f.zone[d], f.zone[2 + d], f.extent[d], f.extent[2 + d]));
+      continue;
+    }
+    for (int side = 0; side < 2; ++side) {
+      const double x = g.limit[2 * side + d], cells = (x - s.grid.lower[d]) / h;
+      if (std::abs(cells - std::round(cells)) > 1e-9)
+        error(side ? "upper" : "lower",
+              fmt::format("the limit's {} bound {} m is not on a grid plane (grid lower {} m, cell {} m): the zone "
+                          "grows by whole cells", "xy"[d], x, s.grid.lower[d], h));
+    }
+    const double lo = std::max(f.extent[d], l0 - f.band_elements * h), hi = std::min(f.extent[2 + d], l1 + f.band_elements * h);
+    if (lo < s.grid.lower[d] - 1e-9 * h || hi > s.grid.upper[d] + 1e-9 * h)
+      error(lo < s.grid.lower[d] - 1e-9 * h ? "lower" : "upper",
+            fmt::format("the limit and its band of {} cells reach [{}, {}] m along {}, outside the grid [{}, {}] m: "
+                        "the grown zone's band is tied to grid nodes", f.band_elements, lo, hi, "xy"[d],
+                        s.grid.lower[d], s.grid.upper[d]));
+  }
+  const double cells = g.step / h;
+  if (std::abs(cells - std::round(cells)) > 1e-9)
+    error("step", fmt::format("{} m is not a whole number of grid cells ({} m)", g.step, h));
+  // The zone grows where the panel's points are damaged or have failed: one of its materials
+  // must model that.
+  bool damaging = false;
+  for (const auto& b : s.bodies)
+    if (const auto* part = std::get_if<PanelPart>(&b.shape); part && part->panel == f.panel && b.material < s.materials.size())
+      damaging = damaging || s.materials[b.material].models.damage || s.materials[b.material].models.max_principal_stress;
+  if (!damaging)
+    error("damage", fmt::format("the zone grows where panel '{}' is damaged, but none of its materials names "
+                                "damage = \"johnson-cook\" or a max-principal-stress failure", s.panels[f.panel].name));
+  f.grow = g;
+}
+
+}  // namespace
+
 void read_far_field(const toml::table& t, Scene& s, const Validated& v,
                     std::vector<Diagnostic>& errors) {
   auto error = [&](const std::string& key, std::string message) {
@@ -267,6 +324,7 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
                                 "[{}, {}] m: the band's far-field nodes are tied to grid nodes",
                                 f.band_elements, lo, hi, "xy"[d], s.grid.lower[d], s.grid.upper[d]));
   }
+  if (const toml::table* grow = (*t["zone"].as_table())["grow"].as_table()) read_zone_growth(*grow, s, v, errors);
 }
 
 void read_refinements(const toml::array& zones, Scene& s, const Validated& v,

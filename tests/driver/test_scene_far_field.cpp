@@ -164,5 +164,55 @@ TEST(SceneFarField, FiniteStrainOnlyWhenNamed) {
   EXPECT_EQ(s.resolved["far_field"]["kinematics"].value_or(std::string{}), "finite");
 }
 
+
+// [far_field.zone.grow]: a zone that grows, with step and margin defaulting to 8 and 4 grid cells
+// (recorded in the resolved scene); absent, the zone stays.
+const std::vector<std::string> growing = {"grid.upper=[\"7 mm\", \"7 mm\", \"3 mm\"]",
+                                          "material.aluminium.library=Al5052",
+                                          "material.aluminium.strength=johnson-cook",
+                                          "material.aluminium.damage=johnson-cook",
+                                          "far_field.zone.grow.lower=[\"0 mm\", \"0 mm\"]",
+                                          "far_field.zone.grow.upper=[\"6 mm\", \"6 mm\"]"};
+
+std::vector<std::string> growing_with(std::vector<std::string> more) {
+  more.insert(more.begin(), growing.begin(), growing.end());
+  return more;
+}
+
+TEST(SceneFarField, AGrowingZoneResolvesItsLimitAndDefaults) {
+  EXPECT_FALSE(parse_scene(small_hybrid(), "small_hybrid.toml").far_field->grow.has_value());
+  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml", growing);
+  ASSERT_TRUE(s.far_field->grow.has_value());
+  const auto& g = *s.far_field->grow;
+  EXPECT_DOUBLE_EQ(g.limit[2], 6e-3);
+  EXPECT_DOUBLE_EQ(g.limit[3], 6e-3);
+  EXPECT_DOUBLE_EQ(g.step, 4e-3);     // 8 cells of 0.5 mm
+  EXPECT_DOUBLE_EQ(g.margin, 2e-3);   // 4 cells
+  EXPECT_DOUBLE_EQ(g.damage, 1.0);
+  EXPECT_DOUBLE_EQ(s.resolved["far_field"]["zone"]["grow"]["step"].value_or(0.0), 4e-3);
+  EXPECT_DOUBLE_EQ(s.resolved["far_field"]["zone"]["grow"]["margin"].value_or(0.0), 2e-3);
+}
+
+TEST(SceneFarField, AGrowingZonesErrorsNameTheKey) {
+  Diagnostic d = error_for(growing_with({"far_field.zone.grow.upper=[\"2 mm\", \"6 mm\"]"}), "far_field.zone.grow.upper");
+  EXPECT_NE(d.message.find("must hold the zone's"), std::string::npos) << d.message;
+
+  d = error_for(growing_with({"far_field.zone.grow.upper=[\"5.2 mm\", \"6 mm\"]"}), "far_field.zone.grow.upper");
+  EXPECT_NE(d.message.find("not on a grid plane"), std::string::npos) << d.message;
+
+  // The grid ends at 7 mm: a 6 mm limit and 3 band cells of 0.5 mm reach 7.5 mm.
+  d = error_for(growing_with({"far_field.band_elements=3"}), "far_field.zone.grow.upper");
+  EXPECT_NE(d.message.find("outside the grid"), std::string::npos) << d.message;
+
+  d = error_for(growing_with({"far_field.zone.grow.step=0.7 mm"}), "far_field.zone.grow.step");
+  EXPECT_NE(d.message.find("not a whole number of grid cells"), std::string::npos) << d.message;
+
+  d = error_for(growing_with({"far_field.zone.grow.damage=0"}), "far_field.zone.grow.damage");
+  EXPECT_NE(d.message.find("in (0, 1]"), std::string::npos) << d.message;
+
+  d = error_for(growing_with({"material.aluminium.damage=none"}), "far_field.zone.grow.damage");
+  EXPECT_NE(d.message.find("none of its materials names damage"), std::string::npos) << d.message;
+}
+
 }  // namespace
 }  // namespace hvi::scene

@@ -1,0 +1,101 @@
+// The points a hybrid's growing zone gets (driver::Hybrid::sample_ring): the small hybrid's panel
+// (tests/driver/data/small_hybrid.toml: 0.5 mm facesheets sampled on the lattice, 0.1 mm core
+// walls as point-type layers) cut to the ring between its 3 mm zone and a grown one.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cases/driver/bodies.hpp"
+#include "cases/driver/build_solver.hpp"
+#include "cases/driver/hybrid.hpp"
+#include "cases/driver/scene.hpp"
+
+namespace hvi {
+namespace {
+
+const std::vector<std::string> growing = {"grid.upper=[\"7 mm\", \"7 mm\", \"3 mm\"]",
+                                          "far_field.zone.grow.lower=[\"0 mm\", \"0 mm\"]",
+                                          "far_field.zone.grow.upper=[\"6 mm\", \"6 mm\"]",
+                                          "material.aluminium.library=Al5052",
+                                          "material.aluminium.strength=johnson-cook",
+                                          "material.aluminium.damage=johnson-cook"};
+
+struct GrowingHybrid {
+  scene::Scene scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml", growing);
+  std::unique_ptr<mpm::Solver> solver = driver::make_solver(scene);
+  driver::Hybrid hybrid{scene, *solver};
+};
+
+// The body's points over the in-plane box, one piece.
+geometry::PointSet one_piece(const scene::Scene& s, std::size_t body, const std::array<double, 4>& box) {
+  const auto& clip = *s.bodies[body].clip;
+  return driver::sample_body(s, body, *driver::make_body_solid(s, body, {{box[0], box[1], clip.lower[2]},
+                                                                        {box[2], box[3], clip.upper[2]}}));
+}
+
+double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+
+const std::array<double, 4> zone{0.0, 0.0, 3e-3, 3e-3}, grown{0.0, 0.0, 5e-3, 4e-3};
+
+// Each body's ring points hold exactly the volume the zone gains: the grown zone's less the
+// zone's (both sampled in one piece; the sampler gives every cut solid its exact volume, so this
+// holds to round-off, 1e-12 relative), and lie in the ring.
+TEST(ZoneGrowthSampling, TheRingHoldsTheVolumeTheZoneGains) {
+  GrowingHybrid s;
+  ASSERT_EQ(s.scene.panels.size(), 1u);
+  const auto boxes = coupling::ring(zone, grown);
+  ASSERT_EQ(boxes.size(), 2u);  // above the zone along y, and beside it along x
+  std::vector<coupling::NewPoints> parts;
+  for (const auto& box : boxes) parts.push_back(s.hybrid.sample_ring(box, *s.solver));
+  for (std::size_t b = 1; b < 4; ++b) {  // front, core, rear (body 0 is the ball)
+    double ring_volume = 0.0;
+    std::size_t count = 0;
+    for (const auto& part : parts)
+      for (std::size_t k = 0; k < part.size(); ++k) {
+        if (part.body[k] != static_cast<std::int64_t>(b)) continue;
+        ring_volume += part.volume[k];
+        ++count;
+        const double x = part.position[3 * k], y = part.position[3 * k + 1];
+        EXPECT_TRUE(x >= grown[0] && x <= grown[2] && y >= grown[1] && y <= grown[3]);
+        EXPECT_FALSE(x < zone[2] && y < zone[3]) << "a ring point inside the zone at " << x << ", " << y;
+        EXPECT_EQ(part.material[k], static_cast<std::int64_t>(s.scene.bodies[b].material));
+      }
+    const double gained = sum(one_piece(s.scene, b, grown).volume) - sum(one_piece(s.scene, b, zone).volume);
+    EXPECT_GT(count, 0u);
+    EXPECT_NEAR(ring_volume / gained, 1.0, 1e-12) << s.scene.bodies[b].name;
+  }
+}
+
+// The facesheets' lattice is anchored at the grid, so their ring points are exactly the grown
+// zone's one-piece points outside the zone (the point-type core walls are not: a wall cut by a box
+// edge ends there, so the ring's boxes split walls that one piece would not; their volume is
+// checked above).
+TEST(ZoneGrowthSampling, FacesheetPointsAreTheGrownZonesOutsideTheZone) {
+  GrowingHybrid s;
+  for (const std::size_t b : {std::size_t{1}, std::size_t{3}}) {
+    std::vector<std::array<double, 4>> ring_points, expected;
+    for (const auto& box : coupling::ring(zone, grown)) {
+      const auto part = s.hybrid.sample_ring(box, *s.solver);
+      for (std::size_t k = 0; k < part.size(); ++k)
+        if (part.body[k] == static_cast<std::int64_t>(b))
+          ring_points.push_back({part.position[3 * k], part.position[3 * k + 1], part.position[3 * k + 2], part.volume[k]});
+    }
+    const auto whole = one_piece(s.scene, b, grown);
+    for (std::size_t k = 0; k < whole.size(); ++k)
+      if (!(whole.position[3 * k] < zone[2] && whole.position[3 * k + 1] < zone[3]))
+        expected.push_back({whole.position[3 * k], whole.position[3 * k + 1], whole.position[3 * k + 2], whole.volume[k]});
+    std::sort(ring_points.begin(), ring_points.end());
+    std::sort(expected.begin(), expected.end());
+    ASSERT_EQ(ring_points.size(), expected.size()) << s.scene.bodies[b].name;
+    for (std::size_t k = 0; k < expected.size(); ++k)
+      for (int d = 0; d < 4; ++d) EXPECT_NEAR(ring_points[k][d], expected[k][d], 1e-15) << k;
+  }
+}
+
+}  // namespace
+}  // namespace hvi
