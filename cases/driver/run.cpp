@@ -407,8 +407,9 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     // (and small-strain J2 stops meaning much).
     if (alpha > 0.05)
       fmt::print("  warning: the far field's facesheets yield to a plastic strain of {:.3g}{}; the damage reaches "
-                 "the MPM zone's edge: a larger [far_field] zone would hold it\n",
-                 alpha, hybrid->far_field().finite_strain() ? "" : " (small-strain theory)");
+                 "the MPM zone's edge: {} would hold it\n",
+                 alpha, hybrid->far_field().finite_strain() ? "" : " (small-strain theory)",
+                 hybrid->growing() ? "a larger limit of [far_field.zone.grow]" : "a larger [far_field] zone, or one that grows,");
   }
   record.initial_energy = initial_energy;
   auto measured = evaluate(scene.measures, s, record);
