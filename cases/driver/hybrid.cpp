@@ -146,23 +146,24 @@ void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
     }
 }
 
-coupling::NewPoints Hybrid::sample_ring(const std::array<double, 4>& box, const mpm::Solver& solver) const {
+coupling::NewPoints Hybrid::sample_ring(const std::vector<std::array<double, 4>>& boxes,
+                                        const mpm::Solver& solver) const {
   coupling::NewPoints points;
-  for (const std::size_t b : panel_bodies_) {
-    // The body's clip in a hybrid is the zone cut by the panel's clip: keep its z range.
-    const auto& clip = *scene_.bodies[b].clip;
-    const geometry::Bounds cut{{box[0], box[1], clip.lower[2]}, {box[2], box[3], clip.upper[2]}};
-    const geometry::PointSet set = sample_body(scene_, b, *make_body_solid(scene_, b, cut));
-    const std::size_t material = scene_.bodies[b].material;
-    const double density = solver.materials()[material]->reference_density();
-    points.position.insert(points.position.end(), set.position.begin(), set.position.end());
-    points.volume.insert(points.volume.end(), set.volume.begin(), set.volume.end());
-    if (set.half_width.size() == 3 * set.size())
-      points.half_width.insert(points.half_width.end(), set.half_width.begin(), set.half_width.end());
-    points.density.insert(points.density.end(), set.size(), density);
-    points.body.insert(points.body.end(), set.size(), static_cast<std::int64_t>(b));
-    points.material.insert(points.material.end(), set.size(), static_cast<std::int64_t>(material));
-  }
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  for (const auto& box : boxes)
+    for (const std::size_t b : panel_bodies_) {
+      // The body's clip in a hybrid is the zone cut by the panel's clip: keep its z range.
+      const auto& clip = *scene_.bodies[b].clip;
+      const geometry::Bounds cut{{box[0], box[1], clip.lower[2]}, {box[2], box[3], clip.upper[2]}};
+      const geometry::PointSet set = sample_body(scene_, b, *make_body_solid(scene_, b, cut));
+      const std::size_t material = scene_.bodies[b].material;
+      append(points.position, set.position);
+      append(points.volume, set.volume);
+      append(points.half_width, set.half_width);
+      points.density.insert(points.density.end(), set.size(), solver.materials()[material]->reference_density());
+      points.body.insert(points.body.end(), set.size(), static_cast<std::int64_t>(b));
+      points.material.insert(points.material.end(), set.size(), static_cast<std::int64_t>(material));
+    }
   // Half-widths only when every body has them (GIMP domains of the sampler's points).
   if (points.half_width.size() != 3 * points.size()) points.half_width.clear();
   return points;
@@ -174,18 +175,7 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
   const std::array<double, 4> grown = coupling::grown_zone(solver.particles(), bodies, zone, *growth_);
   if (grown == zone) return std::nullopt;
-  coupling::NewPoints points;
-  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
-  for (const auto& box : coupling::ring(zone, grown)) {
-    const coupling::NewPoints part = sample_ring(box, solver);
-    append(points.position, part.position);
-    append(points.volume, part.volume);
-    append(points.half_width, part.half_width);
-    append(points.density, part.density);
-    append(points.body, part.body);
-    append(points.material, part.material);
-  }
-  if (points.half_width.size() != 3 * points.size()) points.half_width.clear();
+  coupling::NewPoints points = sample_ring(coupling::ring(zone, grown), solver);
   spec_.zone = grown;
   // The far field's layers: rear, core, front; the facesheets carry their stress over, the
   // homogenised core's walls start unstressed (coupling/zone_growth.hpp).

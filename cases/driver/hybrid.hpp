@@ -51,9 +51,9 @@ class Hybrid {
   const std::vector<double>& last_points() const { return last_points_; }
   // The zone now (x0, y0, x1, y1, m).
   const std::array<double, 4>& zone() const { return coupling_->band().zone; }
-  // The points a grown zone gets over `box` (in plane, x0, y0, x1, y1): the panel's bodies cut to
-  // it and sampled, undeformed.
-  coupling::NewPoints sample_ring(const std::array<double, 4>& box, const mpm::Solver& solver) const;
+  // The points a grown zone gets over the ring's `boxes` (in plane, x0, y0, x1, y1; coupling::ring):
+  // the panel's bodies cut to each and sampled, undeformed.
+  coupling::NewPoints sample_ring(const std::vector<std::array<double, 4>>& boxes, const mpm::Solver& solver) const;
 
  private:
   const scene::Scene& scene_;

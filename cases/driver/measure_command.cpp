@@ -259,19 +259,23 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     // z at t = 0; a point added later by a growing zone (a panel layer's) takes its body's
     // mean z at t = 0, which is its layer's.
     std::unordered_map<std::int64_t, double> remirrored_z;
-    if (stride != run.stride)
-      for (std::size_t k = 0; k < initial.size(); ++k) remirrored_z.emplace(initial.id[k], initial.position[3 * k + 2]);
-    const auto& initial_z = stride == run.stride ? run.initial_z : remirrored_z;
     std::unordered_map<std::int64_t, std::pair<double, double>> body_z;  // body -> (sum z, count)
-    for (std::size_t k = 0; k < initial.size(); ++k) {
-      auto& [sum, count] = body_z[initial.body[k]];
-      sum += initial.position[3 * k + 2];
-      count += 1;
-    }
+    if (stride != run.stride)  // only then are there born points
+      for (std::size_t k = 0; k < initial.size(); ++k) {
+        remirrored_z.emplace(initial.id[k], initial.position[3 * k + 2]);
+        auto& [sum, count] = body_z[initial.body[k]];
+        sum += initial.position[3 * k + 2];
+        count += 1;
+      }
+    const auto& initial_z = stride == run.stride ? run.initial_z : remirrored_z;
     for (std::size_t k = 0; k < current.size(); ++k) {
       const auto it = initial_z.find(current.id[k]);
-      const auto& [sum, count] = body_z[current.body[k]];
-      const double z0 = it != initial_z.end() ? it->second : count > 0 ? sum / count : current.position[3 * k + 2];
+      double z0 = current.position[3 * k + 2];
+      if (it != initial_z.end()) {
+        z0 = it->second;
+      } else if (const auto b = body_z.find(current.body[k]); b != body_z.end()) {
+        z0 = b->second.first / b->second.second;
+      }
       if (z0 < z_back - d.threshold) excluded.push_back(k);
     }
     out.debris = analysis::debris_cloud(current.view(), d, excluded);

@@ -50,8 +50,7 @@ TEST(ZoneGrowthSampling, TheRingHoldsTheVolumeTheZoneGains) {
   ASSERT_EQ(s.scene.panels.size(), 1u);
   const auto boxes = coupling::ring(zone, grown);
   ASSERT_EQ(boxes.size(), 2u);  // above the zone along y, and beside it along x
-  std::vector<coupling::NewPoints> parts;
-  for (const auto& box : boxes) parts.push_back(s.hybrid.sample_ring(box, *s.solver));
+  const std::vector<coupling::NewPoints> parts{s.hybrid.sample_ring(boxes, *s.solver)};
   for (std::size_t b = 1; b < 4; ++b) {  // front, core, rear (body 0 is the ball)
     double ring_volume = 0.0;
     std::size_t count = 0;
@@ -79,12 +78,10 @@ TEST(ZoneGrowthSampling, FacesheetPointsAreTheGrownZonesOutsideTheZone) {
   GrowingHybrid s;
   for (const std::size_t b : {std::size_t{1}, std::size_t{3}}) {
     std::vector<std::array<double, 4>> ring_points, expected;
-    for (const auto& box : coupling::ring(zone, grown)) {
-      const auto part = s.hybrid.sample_ring(box, *s.solver);
-      for (std::size_t k = 0; k < part.size(); ++k)
-        if (part.body[k] == static_cast<std::int64_t>(b))
-          ring_points.push_back({part.position[3 * k], part.position[3 * k + 1], part.position[3 * k + 2], part.volume[k]});
-    }
+    const auto part = s.hybrid.sample_ring(coupling::ring(zone, grown), *s.solver);
+    for (std::size_t k = 0; k < part.size(); ++k)
+      if (part.body[k] == static_cast<std::int64_t>(b))
+        ring_points.push_back({part.position[3 * k], part.position[3 * k + 1], part.position[3 * k + 2], part.volume[k]});
     const auto whole = one_piece(s.scene, b, grown);
     for (std::size_t k = 0; k < whole.size(); ++k)
       if (!(whole.position[3 * k] < zone[2] && whole.position[3 * k + 1] < zone[3]))
