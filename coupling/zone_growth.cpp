@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "mpm/types.hpp"
 
@@ -54,15 +56,40 @@ namespace {
 // fem's Voigt order (xx, yy, zz, yz, xz, xy) into the particles' Tensor6 slots.
 constexpr int to_particle[6] = {mpm::sym::xx, mpm::sym::yy, mpm::sym::zz, mpm::sym::yz, mpm::sym::xz, mpm::sym::xy};
 
+// A wall point's stress (coupling/zone_growth.hpp) from the core's elastic strain e (fem's Voigt
+// order, tensor shears) and the wall's direction t; returns its elastic energy per volume,
+// 1/2 (sigma_zz e_zz + tau gamma_tz).
+double take_wall_stress(const LayerTakeover& walls, const fem::Sym& e, const double* t, double* stress) {
+  const double E = walls.wall_youngs_modulus, G = E / (2.0 * (1.0 + walls.wall_poisson_ratio));
+  const double e_zz = e[2], shear = 2.0 * (e[4] * t[0] + e[3] * t[1]);  // gamma_tz
+  const double sigma_zz = E * e_zz, tau = G * shear;
+  for (int c = 0; c < 6; ++c) stress[c] = 0.0;
+  stress[mpm::sym::zz] = sigma_zz;
+  stress[mpm::sym::xz] = tau * t[0];
+  stress[mpm::sym::yz] = tau * t[1];
+  return 0.5 * (sigma_zz * e_zz + tau * shear);
+}
+
 }  // namespace
 
 TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, mpm::Solver& solver,
                          const NewPoints& points, const InterfaceBand& band,
-                         const std::vector<bool>& stressed_layers) {
+                         const std::vector<LayerTakeover>& layers) {
   TakeoverReport report;
   const std::size_t n = points.size();
   report.points = n;
+  const bool directions = points.wall_direction.size() == 2 * n;
+  if (!directions && !points.wall_direction.empty())
+    throw std::invalid_argument("take_over: wall directions for " + std::to_string(points.wall_direction.size() / 2) +
+                                " of " + std::to_string(n) + " points");
   const auto samples = far_field.sample(points.position);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int l = samples[k].layer;
+    if (l < 0 || layers.at(static_cast<std::size_t>(l)).kind != LayerTakeover::Kind::walls) continue;
+    if (!directions || (points.wall_direction[2 * k] == 0.0 && points.wall_direction[2 * k + 1] == 0.0))
+      throw std::invalid_argument("take_over: point " + std::to_string(k) +
+                                  " of the honeycomb core's layer has no wall direction");
+  }
 
   // 2. The far field gives up the zone's cells; its losses of energy and momentum.
   const double energy_before = far_field.kinetic_energy() + far_field.strain_energy();
@@ -97,7 +124,8 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
       P.material[p] = points.material[k];
       solver.fail(p, "a point taking over far-field cells lies outside the far field");
     }
-    const bool stressed = stressed_layers.at(s.layer);
+    const LayerTakeover& layer = layers.at(static_cast<std::size_t>(s.layer));
+    const bool stressed = layer.kind == LayerTakeover::Kind::solid;
     const bool torn = s.damage >= 1.0;
     double trace = 0.0;
     for (int d = 0; d < 3; ++d) {
@@ -122,6 +150,11 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
       if (!torn)
         for (int k6 = 0; k6 < 6; ++k6) energy += 0.5 * (k6 < 3 ? 1.0 : 2.0) * s.stress[k6] * s.elastic_strain[k6];
       if (pressure) (*pressure)[p] = torn ? std::max(-mean, 0.0) : -mean;
+    } else if (!torn) {
+      energy = take_wall_stress(layer, s.elastic_strain, &points.wall_direction[2 * k], &P.stress[6 * p]);
+      const double e_zz = s.elastic_strain[2];
+      P.volume[p] = points.volume[k] * (1.0 + (1.0 - 2.0 * layer.wall_poisson_ratio) * e_zz);
+      if (pressure) (*pressure)[p] = -P.stress[6 * p + mpm::sym::zz] / 3.0;
     }
     // 1/2 sigma : (eps - eps_p) per mass: the plastic work stays booked in the far field's.
     P.internal_energy[p] = std::max(energy, 0.0) * P.volume0[p] / P.mass[p];

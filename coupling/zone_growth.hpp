@@ -11,10 +11,20 @@
 //  1. The far field is sampled (fem::FarField::sample) at the new points' undeformed positions X,
 //     and they start from it: x = X + u(X), v = v(X). A point of a layer that carries its stress
 //     (the facesheets) takes the stress C : (eps - eps_p), its alpha and damage, and the volume
-//     V0 (1 + tr eps), so that its equation of state gives back the far field's pressure; a
-//     point of the homogenised core starts unstressed at V0 (the core's averaged stress is not
-//     its walls'), keeping alpha and damage. Its specific internal energy is the elastic
-//     1/2 sigma : (eps - eps_p) / rho.
+//     V0 (1 + tr eps), so that its equation of state gives back the far field's pressure. A
+//     point of the homogenised core is a point of a wall, of in-plane direction t (NewPoints'
+//     wall_direction), and takes the stress the core's elastic strain e gives that wall, by the
+//     kinematics the core's moduli follow from (fem/orthotropic.hpp: the walls stretch with the
+//     core along z and shear with it in their own plane, and carry no in-plane load):
+//       sigma_zz = E_s e_zz,   tau = G_s gamma_tz,   gamma_tz = 2 (e_xz t_x + e_yz t_y),
+//       sigma = sigma_zz e_z e_z + tau (t e_z + e_z t),   V = V0 (1 + (1 - 2 nu_s) e_zz)
+//     (uniaxial stress along z: the volume gives back the pressure -sigma_zz / 3). Over walls of
+//     all three directions, a fraction rho*/rho_s of the core, this averages to the core's
+//     sigma_zz = E3 e_zz and, as <t_x^2> = 1/2, sigma_xz = G_s (rho*/rho_s / 2) gamma_xz, Voigt's
+//     bound, which Kelsey's G13 = G_s t/D exceeds by the factor 1 / (1 - t/(2D)) (0.8% for the
+//     paper's core). A torn core point (damage 1) starts unstressed, as the far field's torn
+//     walls carry nothing. Each point keeps alpha and damage; its specific internal energy is
+//     the elastic 1/2 sigma : (eps - eps_p) / rho of its own stress.
 //  2. The cells are removed (fem::FarField::remove_cells) and the band is tied anew
 //     (FarFieldCoupling::retie).
 //  3. Momentum is conserved exactly: the far field's loss of momentum, less the new points', is
@@ -56,6 +66,9 @@ std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone, const
 // Material points, undeformed, that take over far-field cells.
 struct NewPoints {
   std::vector<double> position;    // X, 3 per point (m)
+  // The in-plane unit direction t of a wall point's wall (2 per point; zeros for a point not in
+  // a honeycomb wall), or empty when there is no core among the points.
+  std::vector<double> wall_direction;
   std::vector<double> volume;      // V0 (m^3)
   std::vector<double> half_width;  // 3 per point (m), or empty
   std::vector<double> density;     // reference density (kg/m^3)
@@ -71,11 +84,19 @@ struct TakeoverReport {
   double momentum_correction = 0.0;  // |dv| of step 3, m/s
 };
 
-// `stressed_layers[l]`: whether points of far-field layer l take its stress (true for the
-// facesheets). Throws fem's and the coupling's errors, or mpm::SolverError for a point that
-// falls outside the far field or the grid.
+// What the points of a far-field layer take from it (step 1 above): a solid's stress (the
+// facesheets), or, for the homogenised core, the stress of its walls, whose elastic constants
+// are given.
+struct LayerTakeover {
+  enum class Kind { solid, walls } kind = Kind::solid;
+  double wall_youngs_modulus = 0.0, wall_poisson_ratio = 0.0;  // Pa, -; for walls
+};
+
+// `layers[l]`: how points of far-field layer l start. Throws std::invalid_argument when a point of
+// a walls layer has no wall direction, fem's and the coupling's errors, or mpm::SolverError for
+// a point that falls outside the far field or the grid.
 TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, mpm::Solver& solver,
                          const NewPoints& points, const InterfaceBand& band,
-                         const std::vector<bool>& stressed_layers);
+                         const std::vector<LayerTakeover>& layers);
 
 }  // namespace hvi::coupling

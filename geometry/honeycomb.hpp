@@ -21,6 +21,7 @@
 // half the wall thickness on each side, so the walls meet at exact 120-degree joins. With
 // `double_walls`, the walls normal to x' (parallel to y': the ribbon direction of expanded
 // honeycomb, where the foils are bonded) are 2 t_hc thick.
+#include <array>
 #include <vector>
 
 #include "geometry/solid.hpp"
@@ -77,6 +78,11 @@ class HexPattern {
   std::vector<WallLine> walls(const Point2& lower, const Point2& upper) const;
   // Is the plan point in a wall (outside every shrunk cell)?
   bool in_wall(const Point2& p) const;
+  // The family of the wall nearest the plan point (as WallLine's): the side of its nearest cell
+  // centre c whose outward normal, at a multiple of 60 degrees, is closest in angle to p - c.
+  int wall_family(const Point2& p) const;
+  // A wall of `family`'s unit mid-line direction in plan (scene frame; its sign is arbitrary).
+  Point2 wall_direction(int family) const;
   // The corners (scene frame, counter-clockwise) of the shrunk cell around centre (n, m).
   std::array<Point2, 6> cell_interior(long n, long m) const;
   // Volume trimmed off a wall end of `family` at a junction, as a length: see walls().
@@ -84,6 +90,11 @@ class HexPattern {
 
  private:
   Point2 local_center(long n, long m) const;
+  // p - c in the pattern frame, c the nearest cell centre (the cell holding p).
+  Point2 offset_from_center(const Point2& p) const;
+  // |n_k . (p - c)| for the three side normals n_k (0, 60, 120 degrees): the distance from the
+  // centre towards each pair of sides.
+  std::array<double, 3> side_distances(const Point2& p) const;
   double D_;
   std::array<double, 3> w_;  // half wall thickness per family
   std::array<double, 3> trim_;

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "geometry/honeycomb.hpp"
 
@@ -179,7 +180,7 @@ std::vector<WallLine> HexPattern::walls(const Point2& lower, const Point2& upper
   return out;
 }
 
-bool HexPattern::in_wall(const Point2& p) const {
+Point2 HexPattern::offset_from_center(const Point2& p) const {
   const Point2 q = to_pattern(p);
   const double dx = D_ / 2, dy = kSqrt3 * D_ / 2;
   // The nearest centre is the cell containing q (the hexagons are the Voronoi cells of the
@@ -197,12 +198,32 @@ bool HexPattern::in_wall(const Point2& p) const {
       d = {q[0] - c[0], q[1] - c[1]};
     }
   }
+  return d;
+}
+
+std::array<double, 3> HexPattern::side_distances(const Point2& p) const {
+  const Point2 d = offset_from_center(p);
+  return {std::fabs(d[0]), std::fabs(0.5 * d[0] + kSqrt3 / 2 * d[1]), std::fabs(-0.5 * d[0] + kSqrt3 / 2 * d[1])};
+}
+
+bool HexPattern::in_wall(const Point2& p) const {
+  const std::array<double, 3> s = side_distances(p);
   // Outside the shrunk cell when past any of its three pairs of sides.
-  const double s[3] = {std::fabs(d[0]), std::fabs(0.5 * d[0] + kSqrt3 / 2 * d[1]),
-                       std::fabs(-0.5 * d[0] + kSqrt3 / 2 * d[1])};
   for (int k = 0; k < 3; ++k)
     if (s[k] >= D_ / 2 - w_[k]) return true;
   return false;
+}
+
+int HexPattern::wall_family(const Point2& p) const {
+  const std::array<double, 3> s = side_distances(p);
+  return static_cast<int>(std::max_element(s.begin(), s.end()) - s.begin());
+}
+
+Point2 HexPattern::wall_direction(int family) const {
+  // Family k's normal is at 60 k degrees in the pattern frame; its mid-line at 60 k + 90.
+  const double angle = std::numbers::pi / 3 * family + std::numbers::pi / 2;
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {cos_ * c - sin_ * s, sin_ * c + cos_ * s};
 }
 
 std::array<Point2, 6> HexPattern::cell_interior(long n, long m) const {

@@ -60,6 +60,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
   panel.lower = {f.extent[0], f.extent[1]};
   panel.upper = {f.extent[2], f.extent[3]};
   for (int part = 0; part < 3; ++part) panel_bodies_[part] = panel_body(scene, f.panel, part);
+  pattern_.emplace(panel);
   coupling::PanelFarFieldSpec& spec = spec_;
   spec.front = solid(scene, panel_bodies_[0], f.plastic_faces, f.failing_faces);
   spec.core_wall = solid(scene, panel_bodies_[1], f.yielding_core, f.failing_core);
@@ -160,6 +161,13 @@ coupling::NewPoints Hybrid::sample_ring(const std::vector<std::array<double, 4>>
       append(points.position, set.position);
       append(points.volume, set.volume);
       append(points.half_width, set.half_width);
+      // The core's points are its walls': each takes its wall's direction.
+      for (std::size_t k = 0; k < set.size(); ++k) {
+        const geometry::Point2 t = b == panel_bodies_[1]
+                                       ? pattern_->wall_direction(pattern_->wall_family({set.position[3 * k], set.position[3 * k + 1]}))
+                                       : geometry::Point2{0.0, 0.0};
+        points.wall_direction.insert(points.wall_direction.end(), {t[0], t[1]});
+      }
       points.density.insert(points.density.end(), set.size(), solver.materials()[material]->reference_density());
       points.body.insert(points.body.end(), set.size(), static_cast<std::int64_t>(b));
       points.material.insert(points.material.end(), set.size(), static_cast<std::int64_t>(material));
@@ -178,10 +186,13 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   coupling::NewPoints points = sample_ring(coupling::ring(zone, grown), solver);
   spec_.zone = grown;
   // The far field's layers: rear, core, front; the facesheets carry their stress over, the
-  // homogenised core's walls start unstressed (coupling/zone_growth.hpp).
+  // homogenised core's points take its walls' (coupling/zone_growth.hpp).
+  using Kind = coupling::LayerTakeover::Kind;
+  const coupling::LayerTakeover solid{Kind::solid, 0.0, 0.0};
+  const coupling::LayerTakeover walls{Kind::walls, spec_.core_wall.youngs_modulus, spec_.core_wall.poisson_ratio};
   const auto report = coupling::take_over(*coupling_, *far_field_, solver, points,
                                           coupling::panel_interface_band(spec_, grid_geometry(scene_)),
-                                          {true, false, true});
+                                          {solid, walls, solid});
   last_points_ = std::move(points.position);
   return report;
 }

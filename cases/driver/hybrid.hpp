@@ -16,6 +16,7 @@
 #include "coupling/panel_far_field.hpp"
 #include "coupling/zone_growth.hpp"
 #include "fem/far_field.hpp"
+#include "geometry/honeycomb.hpp"
 #include "mpm/solver.hpp"
 
 namespace hvi::driver {
@@ -60,6 +61,7 @@ class Hybrid {
   coupling::PanelFarFieldSpec spec_;
   std::optional<coupling::ZoneGrowth> growth_;
   std::array<std::size_t, 3> panel_bodies_{};  // front, core, rear
+  std::optional<geometry::HexPattern> pattern_;  // the panel's cells, for its walls' directions
   std::vector<double> last_points_;
   std::unique_ptr<fem::FarField> far_field_;
   std::unique_ptr<coupling::FarFieldCoupling> coupling_;

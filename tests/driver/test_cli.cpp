@@ -352,11 +352,12 @@ TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
 // the resumed run stops, so its checkpoint holds the grown zone's band and points: a one-thread
 // and a resumed run repeat the two-thread run byte for byte (snapshots, energy, far-field VTU
 // files and probes). The balance holds to the failing hybrid's 3% (the energy the take-overs do
-// not carry over is booked, not lost: the homogenised core's strain energy, since its walls start
-// unstressed). The probe's reading goes on without a jump where its node is taken over: its
-// change across that row (5 steps) is within a quarter of its change over the 5 steps before
-// (measured 12%; 4 times it, a jump of 2.8 of 8.5 um, when the probe took the points' own mean
-// displacement). hvi measure reads the points born after t = 0.
+// not carry over is booked, not lost). The probe's reading goes on without a jump where its node
+// is taken over: its change across that row (5 steps) is within half of its change over the 5
+// steps before (measured 34%: the core's points take their walls' stress, whose through-thickness
+// part the discrete walls pass to the rear sheet a little unlike the homogenised core; 12% when
+// they started unstressed; 4 times it, a jump of 2.8 of 8.5 um, when the probe took the points'
+// own mean displacement). hvi measure reads the points born after t = 0.
 TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   const std::string growing =
       " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
@@ -378,7 +379,7 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   ASSERT_LT(taken + 1, probe.size());
   ASSERT_GE(taken, 2u);
   const double before = probe[taken - 1][2] - probe[taken - 2][2], across = probe[taken][2] - probe[taken - 1][2];
-  EXPECT_LT(std::abs(across - before), 0.25 * std::abs(before)) << across << " after " << before;
+  EXPECT_LT(std::abs(across - before), 0.5 * std::abs(before)) << across << " after " << before;
   EXPECT_EQ(run("measure " + two.string()), 0);
   EXPECT_NE(read(two / "measurements.json").find("\"perforated\" : true"), std::string::npos);
 }

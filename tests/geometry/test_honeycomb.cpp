@@ -1,8 +1,10 @@
-// The honeycomb panel: the cell pattern follows eq. (6), the wall list matches a hand count, the
-// core volume equals the closed-form solidity for the paper's two panels, the analytic inside
-// test agrees with the CGAL surface, and every generated body is a closed solid boundary.
+// The honeycomb panel: the cell pattern follows eq. (6), the wall list matches a hand count, a
+// point of a wall finds its family and direction, the core volume equals the closed-form solidity
+// for the paper's two panels, the analytic inside test agrees with the CGAL surface, and every
+// generated body is a closed solid boundary.
 #include <cmath>
 #include <iostream>
+#include <numbers>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -111,6 +113,39 @@ TEST(HexPattern, WallCountMatchesHandCount) {
           std::hypot(many[i].b[0] - many[j].b[0], many[i].b[1] - many[j].b[1]) < 1e-12;
       ASSERT_FALSE(same) << i << " " << j;
     }
+}
+
+// Each wall's family and direction, as the take-over of a growing MPM zone gives its core points
+// (coupling/zone_growth.hpp): every point of a wall, away from its junctions, finds that wall's
+// family, and the direction is parallel to its mid-line, at any rotation of the pattern.
+TEST(HexPattern, APointOfAWallFindsItsFamilyAndDirection) {
+  for (const double rotation : {0.0, std::numbers::pi / 2, 0.3}) {
+    HoneycombPanel p = study_panel({-10 * mm, -10 * mm}, {10 * mm, 10 * mm});
+    p.rotation = rotation;
+    p.pattern_origin = {0.37 * mm, -0.21 * mm};
+    const HexPattern pattern(p);
+    const auto walls = pattern.walls({-6 * mm, -6 * mm}, {6 * mm, 6 * mm});
+    ASSERT_GT(walls.size(), 40u);
+    for (const auto& w : walls) {
+      const double length = std::hypot(w.b[0] - w.a[0], w.b[1] - w.a[1]);
+      const Point2 along{(w.b[0] - w.a[0]) / length, (w.b[1] - w.a[1]) / length};
+      const Point2 t = pattern.wall_direction(w.family);
+      EXPECT_NEAR(std::hypot(t[0], t[1]), 1.0, 1e-15);
+      EXPECT_NEAR(std::abs(t[0] * along[0] + t[1] * along[1]), 1.0, 1e-12) << rotation;
+      // Points at a quarter, half and three quarters of the mid-line, and off it by +-0.4 of the
+      // half thickness, all find the wall's family.
+      for (const double s : {0.25, 0.5, 0.75})
+        for (const double off : {-0.4, 0.0, 0.4}) {
+          const double o = off * pattern.half_thickness(w.family);
+          const Point2 x{w.a[0] + s * (w.b[0] - w.a[0]) - o * along[1], w.a[1] + s * (w.b[1] - w.a[1]) + o * along[0]};
+          EXPECT_EQ(pattern.wall_family(x), w.family) << rotation << " " << s << " " << off;
+        }
+    }
+  }
+  // At rotation 0 the ribbon walls (family 0, normal to x) run along y.
+  const HexPattern plain(study_panel({-1 * mm, -1 * mm}, {1 * mm, 1 * mm}));
+  EXPECT_NEAR(std::abs(plain.wall_direction(0)[1]), 1.0, 1e-15);
+  EXPECT_EQ(plain.wall_family({1.5 * mm, 0.1 * mm}), 0);
 }
 
 // Core volume of the walls by hand: mid-line length x thickness x height, minus the junction
