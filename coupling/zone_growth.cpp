@@ -18,11 +18,11 @@ std::array<double, 4> grown_zone(const mpm::Particles& P, std::span<const std::i
   for (std::size_t p = 0; p < P.size(); ++p) {
     const bool damaged = (damage && (*damage)[p] >= growth.damage) || (failed && (*failed)[p] > 0.0);
     if (!damaged || std::find(bodies.begin(), bodies.end(), P.body[p]) == bodies.end()) continue;
-    const double x = P.position[3 * p], y = P.position[3 * p + 1];
-    // Within the margin of a side, in plane, and not beyond the zone across it (debris flying out
-    // of the panel is not the panel's damage).
+    const double x = P.position[3 * p], y = P.position[3 * p + 1], z = P.position[3 * p + 2];
+    // Within the margin of a side, in plane, and not beyond the zone across it; in the panel
+    // (debris flying out of it is not the panel's damage).
     if (x < zone[0] - growth.margin || x > zone[2] + growth.margin || y < zone[1] - growth.margin ||
-        y > zone[3] + growth.margin)
+        y > zone[3] + growth.margin || z < growth.z_lower - growth.margin || z > growth.z_upper + growth.margin)
       continue;
     reached[0] = reached[0] || x < zone[0] + growth.margin;
     reached[1] = reached[1] || y < zone[1] + growth.margin;

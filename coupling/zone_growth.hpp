@@ -4,8 +4,12 @@
 // debris, so the zone must hold wherever the panel does.
 //
 // When (grown_zone): a side of the zone grows by `step` when a point of the panel's bodies within
-// `margin` of it (in plane, inside the zone) has Johnson-Cook damage D >= `damage` (or has
-// failed), up to the side's `limit`. A side on a symmetry plane, or already at its limit, stays.
+// `margin` of it (in plane, inside the zone) and within `margin` of the panel's undeformed
+// thickness (along z) has Johnson-Cook damage D >= `damage` (or has failed), up to the side's
+// `limit`. A side on a symmetry plane, or already at its limit, stays. The z window leaves out the
+// failed points of the panel that fly off it, the front sheet's ejecta and the debris cloud behind
+// the rear sheet, which spread radially faster than the panel fails and are not damage the far
+// field would have to hold.
 //
 // How (take_over), between two steps, for the cells of the grown zone:
 //  1. The far field is sampled (fem::FarField::sample) at the new points' undeformed positions X,
@@ -49,6 +53,7 @@ struct ZoneGrowth {
   double step = 0.0;              // m, a whole number of grid cells
   double margin = 0.0;            // m
   double damage = 1.0;            // D that counts as reaching the edge
+  double z_lower = 0.0, z_upper = 0.0;  // the panel's undeformed thickness, rear face to front face (m)
   // Per side (x0, y0, x1, y1): whether it may move (false on a symmetry plane).
   std::array<bool, 4> movable{true, true, true, true};
 };

@@ -73,6 +73,8 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
     g.step = f.grow->step;
     g.margin = f.grow->margin;
     g.damage = f.grow->damage;
+    g.z_lower = panel.rear_box().lower[2];
+    g.z_upper = panel.front_box().upper[2];
     // A side on the panel's edge (a symmetry plane of a half or quarter model) stays.
     for (int side = 0; side < 4; ++side) g.movable[side] = f.zone[side] != f.extent[side];
     growth_ = g;

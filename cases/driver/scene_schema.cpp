@@ -233,15 +233,17 @@ TableSpec far_field_table() {
                  .required = true};
   TableSpec grow{.name = "grow",
                  .doc = "A zone that grows over the far field, as hydrocodes turn failing elements into "
-                        "particles: a side moves out by `step` when a panel point within `margin` of it has "
+                        "particles: a side moves out by `step` when a panel point within `margin` of it, and "
+                        "within `margin` of the panel's thickness (not its debris or ejecta), has "
                         "Johnson-Cook damage >= `damage` (or has failed), up to the limit box. The far-field "
                         "cells it takes are sampled into points that start from the far field's displacement, "
-                        "velocity, and the facesheets' stress and plastic state. Absent: the zone stays"};
+                        "velocity, the facesheets' stress and plastic state and the core walls' stress. "
+                        "Absent: the zone stays"};
   grow.vector_required("lower", dims::length, "x, y of the largest zone's lower corner (on grid planes)", 2)
       .vector_required("upper", dims::length, "x, y of the largest zone's upper corner (on grid planes)", 2)
       .optional_quantity("step", dims::length, positive(), "How far a side moves at once, a whole number of "
                          "grid cells (default 8 cells)")
-      .optional_quantity("margin", dims::length, positive(), "Damage this close to a side moves it (default 4 cells)")
+      .optional_quantity("margin", dims::length, positive(), "Damage this close to a side, and to the panel's faces, moves it (default 4 cells)")
       .number("damage", left_open(0, 1), 1.0, "Johnson-Cook damage D that counts as reaching the side");
   zone.vector_required("lower", dims::length, "x, y of the zone's lower corner", 2)
       .vector_required("upper", dims::length, "x, y of the zone's upper corner", 2)

@@ -9,7 +9,8 @@
 //    round-off in both cases (the points hold the cells' mass, kinetic and strain energy);
 //  - gives the points of a homogenised honeycomb core the stress of their walls, which averages
 //    to the core's (to Voigt's versus Kelsey's bound, t/(2D));
-// and grown_zone moves only the sides that damaged points reach, by its step, up to the limit.
+// and grown_zone moves only the sides that damaged points of the panel reach, by its step, up to
+// the limit (the panel's debris and ejecta, off its thickness, do not count).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -212,9 +213,12 @@ TEST(ZoneGrowth, TakeOverGivesTheCoresPointsTheirWallsStress) {
 TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   mpm::Particles P;
   P.add_field("damage", mpm::FieldKind::scalar, "1");
-  const double pts[][3] = {{9.5e-3, 2e-3, 0}, {3e-3, 9.9e-3, 0}, {1e-3, 1e-3, 0}, {30e-3, 3e-3, 0}};
-  const double D[] = {1.0, 0.5, 1.0, 1.0};  // reaches x1; too little damage; interior; far outside
-  for (int k = 0; k < 4; ++k) {
+  // Reaches x1; too little damage; interior; far outside; debris 2.5 mm below the panel's rear
+  // face, within y1's margin; ejecta 1.5 mm above its front face, within y1's margin.
+  const double pts[][3] = {{9.5e-3, 2e-3, -1e-3}, {3e-3, 9.9e-3, -1e-3}, {1e-3, 1e-3, -1e-3},
+                           {30e-3, 3e-3, -1e-3}, {5e-3, 9.5e-3, -4.5e-3}, {6e-3, 9.5e-3, 1.5e-3}};
+  const double D[] = {1.0, 0.5, 1.0, 1.0, 1.0, 1.0};
+  for (int k = 0; k < 6; ++k) {
     const std::size_t p = P.append(pts[k], 1e-9, 1e-6, 1, 0);
     P.field("damage")[p] = D[k];
   }
@@ -222,10 +226,19 @@ TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   g.limit = {0, 0, 12e-3, 20e-3};
   g.step = 2e-3;
   g.margin = 1e-3;
+  g.z_lower = -2e-3;  // the panel: z in [-2, 0] mm
+  g.z_upper = 0.0;
   g.movable = {false, false, true, true};
   const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
   const std::vector<std::int64_t> panel{1};
   EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 10e-3}));
+  // The debris and the ejecta count once the panel's window holds them.
+  ZoneGrowth deep = g;
+  deep.z_lower = -4e-3;
+  EXPECT_EQ(grown_zone(P, panel, zone, deep), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
+  ZoneGrowth high = g;
+  high.z_upper = 1e-3;
+  EXPECT_EQ(grown_zone(P, panel, zone, high), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
   g.damage = 0.5;  // now the second point reaches y1 too
   EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
   // At the limit the side stays; other bodies' damage does not count.
