@@ -1,6 +1,7 @@
 // The points a hybrid's growing zone gets (driver::Hybrid::sample_ring): the small hybrid's panel
 // (tests/driver/data/small_hybrid.toml: 0.5 mm facesheets sampled on the lattice, 0.1 mm core
-// walls as point-type layers) cut to the ring between its 3 mm zone and a grown one.
+// walls as point-type layers) cut to the ring between its 3 mm zone and a grown one: their volume,
+// the facesheets' lattice, and the core walls' directions.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "cases/driver/build_solver.hpp"
 #include "cases/driver/hybrid.hpp"
 #include "cases/driver/scene.hpp"
+#include "geometry/honeycomb.hpp"
 
 namespace hvi {
 namespace {
@@ -92,6 +94,49 @@ TEST(ZoneGrowthSampling, FacesheetPointsAreTheGrownZonesOutsideTheZone) {
     for (std::size_t k = 0; k < expected.size(); ++k)
       for (int d = 0; d < 4; ++d) EXPECT_NEAR(ring_points[k][d], expected[k][d], 1e-15) << k;
   }
+}
+
+// The core's ring points carry the direction of the wall they lie in, for the take-over's wall
+// stress (coupling/zone_growth.hpp); the facesheets' carry none. Checked against the pattern's own
+// wall list: every core point away from a junction (its nearest wall nearer by 1 um than any wall
+// of another family) takes the family and the direction of its nearest wall's mid-line.
+TEST(ZoneGrowthSampling, CorePointsTakeTheirWallsDirection) {
+  GrowingHybrid s;
+  const auto part = s.hybrid.sample_ring(coupling::ring(zone, grown), *s.solver);
+  ASSERT_EQ(part.wall_direction.size(), 2 * part.size());
+  const geometry::HexPattern pattern(driver::panel_geometry(s.scene.panels[0]));
+  const auto walls = pattern.walls({-1e-3, -1e-3}, {grown[2] + 1e-3, grown[3] + 1e-3});
+  std::size_t checked = 0, core = 0;
+  for (std::size_t k = 0; k < part.size(); ++k) {
+    const double tx = part.wall_direction[2 * k], ty = part.wall_direction[2 * k + 1];
+    if (part.body[k] != 2) {
+      EXPECT_EQ(tx, 0.0);
+      EXPECT_EQ(ty, 0.0);
+      continue;
+    }
+    ++core;
+    EXPECT_NEAR(std::hypot(tx, ty), 1.0, 1e-12);
+    const geometry::Point2 p{part.position[3 * k], part.position[3 * k + 1]};
+    std::array<double, 3> nearest{1.0, 1.0, 1.0};  // per family, m
+    std::array<geometry::Point2, 3> along{};
+    for (const auto& w : walls) {
+      const double dx = w.b[0] - w.a[0], dy = w.b[1] - w.a[1], L2 = dx * dx + dy * dy;
+      const double u = std::clamp(((p[0] - w.a[0]) * dx + (p[1] - w.a[1]) * dy) / L2, 0.0, 1.0);
+      const double d = std::hypot(p[0] - w.a[0] - u * dx, p[1] - w.a[1] - u * dy);
+      if (d < nearest[w.family]) {
+        nearest[w.family] = d;
+        along[w.family] = {dx / std::sqrt(L2), dy / std::sqrt(L2)};
+      }
+    }
+    const auto f = static_cast<std::size_t>(std::min_element(nearest.begin(), nearest.end()) - nearest.begin());
+    bool clear = true;
+    for (std::size_t g = 0; g < 3; ++g) clear = clear && (g == f || nearest[g] > nearest[f] + 1e-6);
+    if (!clear) continue;
+    ++checked;
+    EXPECT_NEAR(std::abs(tx * along[f][0] + ty * along[f][1]), 1.0, 1e-12) << p[0] << ", " << p[1];
+  }
+  EXPECT_GT(core, 100u);
+  EXPECT_GT(checked, core / 2);
 }
 
 }  // namespace
