@@ -75,8 +75,14 @@ std::size_t Particles::append(const double x[3], double volume_value, double mas
 }
 
 void Particles::resize(std::size_t n) {
-  for (auto& f : real_fields_) f.data->resize(n * components(f.kind), 0.0);
-  for (auto& f : int_fields_) f.data->resize(n, 0);
+  // To exactly n: a vector grown past its capacity would double it, and a growing MPM zone that
+  // adds a tenth of its points at a time would then hold up to twice the particles' memory.
+  auto grow = [](auto& v, std::size_t size, auto zero) {
+    if (size > v.capacity()) v.reserve(size);
+    v.resize(size, zero);
+  };
+  for (auto& f : real_fields_) grow(*f.data, n * components(f.kind), 0.0);
+  for (auto& f : int_fields_) grow(*f.data, n, std::int64_t{0});
 }
 
 namespace {

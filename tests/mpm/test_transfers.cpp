@@ -1,6 +1,7 @@
 // Particle -> grid transfers (mpm/transfers.hpp, mpm/particle_bins.hpp): a random particle cloud
 // scatters exactly its mass and momentum to the nodes and internal forces that sum to zero, for
-// linear and GIMP shape functions; the sparse grid allocates blocks only near particles.
+// linear and GIMP shape functions; the sparse grid allocates blocks only near particles; particles
+// grown in bulk hold exactly their size.
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -172,6 +173,21 @@ TEST(Transfers, GridAllocatesOnlyNearParticles) {
     // +1 neighbours give exactly 2^3 = 8 blocks per cluster.
     EXPECT_EQ(near, 16u);
   }
+}
+
+// Particles grown in bulk (a hybrid's zone taking over far-field cells, Particles::resize) hold
+// exactly their size: growing 1,000 particles by a tenth, the fields hold 1,100 particles' bytes,
+// where a vector past its capacity would double to 2,000 (exact).
+TEST(Particles, ResizeHoldsExactlyTheNewSize) {
+  Particles P;
+  P.add_field("damage", FieldKind::scalar, "1");
+  P.resize(1000);
+  const std::size_t per_particle = P.bytes() / 1000;
+  EXPECT_EQ(P.bytes(), 1000 * per_particle);
+  P.resize(1100);
+  EXPECT_EQ(P.size(), 1100u);
+  EXPECT_EQ(P.bytes(), 1100 * per_particle);
+  EXPECT_EQ(P.field("damage")[1099], 0.0);
 }
 
 }  // namespace
