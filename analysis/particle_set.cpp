@@ -12,17 +12,29 @@ void append_field(std::vector<T>& out, std::span<const T> in, std::size_t p, int
   for (int c = 0; c < components; ++c) out.push_back(in[components * p + c]);
 }
 
-}  // namespace
-
-ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride) {
+// The images of particles index(0), ..., index(n - 1), every field reserved to its size.
+template <class Index>
+ParticleData mirror_points(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride, std::size_t n,
+                           Index index) {
   ParticleData out;
   const std::size_t copies = (planes.x ? 2 : 1) * (planes.y ? 2 : 1);
-  out.position.reserve(3 * set.size() * copies);
-  out.id.reserve(set.size() * copies);
+  auto reserve = [&](auto& field, const auto& from, std::size_t components) {
+    if (!from.empty()) field.reserve(components * n * copies);
+  };
+  reserve(out.position, set.position, 3);
+  reserve(out.id, set.id, 1);
+  reserve(out.body, set.body, 1);
+  reserve(out.mass, set.mass, 1);
+  reserve(out.volume, set.volume, 1);
+  reserve(out.failed, set.failed, 1);
+  reserve(out.spacing, set.spacing, 1);
+  reserve(out.half_width, set.half_width, 3);
+  reserve(out.velocity, set.velocity, 3);
   std::int64_t image = 0;
   for (int mx = 0; mx < (planes.x ? 2 : 1); ++mx)
     for (int my = 0; my < (planes.y ? 2 : 1); ++my, ++image)
-      for (std::size_t p = 0; p < set.size(); ++p) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t p = index(i);
         Vec3 x = set.x(p);
         if (mx) x[0] = 2 * *planes.x - x[0];
         if (my) x[1] = 2 * *planes.y - x[1];
@@ -40,6 +52,17 @@ ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::i
         }
       }
   return out;
+}
+
+}  // namespace
+
+ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride) {
+  return mirror_points(set, planes, id_stride, set.size(), [](std::size_t i) { return i; });
+}
+
+ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride,
+                      std::span<const std::size_t> particles) {
+  return mirror_points(set, planes, id_stride, particles.size(), [&](std::size_t i) { return particles[i]; });
 }
 
 ParticleData copy_of(const ParticleSet& set) {

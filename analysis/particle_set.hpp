@@ -55,6 +55,10 @@ struct MirrorPlanes {
 // positions. A particle lying exactly on a
 // plane is copied too (lattice sampling puts none there: points sit half a spacing from a cut).
 ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride);
+// The same for the listed particles only (indices into the set), in the order listed: a
+// measurement mirrors just the bodies it reads, not the whole model.
+ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride,
+                      std::span<const std::size_t> particles);
 
 // A copy of the set (no mirroring).
 ParticleData copy_of(const ParticleSet& set);

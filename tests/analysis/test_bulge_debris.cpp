@@ -108,5 +108,56 @@ TEST(Debris, MassAndExtents) {
   EXPECT_EQ(whole.velocity[3 * p.size() + 1], -20.0);  // v_y of the first image, across y = 0
 }
 
+// A measurement mirrors only the particles it reads: the images of a listed subset are exactly
+// the full mirrored set's rows for those particles (positions, ids, velocities, every field), in
+// the set's order, and each field holds exactly their size (a quarter model's 4 copies of the
+// model's points are the measure's largest allocation).
+TEST(Mirror, ASubsetGivesTheFullImagesOfItsParticles) {
+  const ParticleData plate = test::plate(1 * mm, h, 2, {}, false, 0, 0.0);
+  ParticleData p = test::cut(plate.view(), true, true);  // the quarter x, y > 0, with spacings
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    p.velocity.insert(p.velocity.end(), {1.0 + k, 2.0 * k, -3.0});
+    p.half_width.insert(p.half_width.end(), {h / 2, h / 2, h / 2});
+  }
+  const MirrorPlanes planes{.x = 0.0, .y = 0.0};
+  const std::int64_t stride = 1000;
+  const ParticleData full = mirrored(p.view(), planes, stride);
+  const std::vector<std::size_t> subset{1, 4, 5, p.size() - 1};
+  const ParticleData part = mirrored(p.view(), planes, stride, subset);
+  ASSERT_EQ(part.size(), 4 * subset.size());
+  for (std::size_t image = 0; image < 4; ++image)
+    for (std::size_t i = 0; i < subset.size(); ++i) {
+      const std::size_t a = image * subset.size() + i, b = image * p.size() + subset[i];
+      EXPECT_EQ(part.id[a], full.id[b]);
+      EXPECT_EQ(part.id[a], p.id[subset[i]] + static_cast<std::int64_t>(image) * stride);
+      EXPECT_EQ(part.body[a], full.body[b]);
+      EXPECT_EQ(part.mass[a], full.mass[b]);
+      EXPECT_EQ(part.volume[a], full.volume[b]);
+      EXPECT_EQ(part.failed[a], full.failed[b]);
+      EXPECT_EQ(part.spacing[a], full.spacing[b]);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(part.position[3 * a + c], full.position[3 * b + c]);
+        EXPECT_EQ(part.velocity[3 * a + c], full.velocity[3 * b + c]);
+        EXPECT_EQ(part.half_width[3 * a + c], full.half_width[3 * b + c]);
+      }
+    }
+  // Image 3 is mirrored across both planes: x and y and their velocities change sign.
+  const std::size_t last = 3 * subset.size();
+  EXPECT_EQ(part.position[3 * last], -p.position[3 * subset[0]]);
+  EXPECT_EQ(part.position[3 * last + 1], -p.position[3 * subset[0] + 1]);
+  EXPECT_EQ(part.velocity[3 * last + 1], -p.velocity[3 * subset[0] + 1]);
+  for (const ParticleData* d : {&full, &part}) {
+    EXPECT_EQ(d->position.capacity(), d->position.size());
+    EXPECT_EQ(d->velocity.capacity(), d->velocity.size());
+    EXPECT_EQ(d->half_width.capacity(), d->half_width.size());
+    EXPECT_EQ(d->id.capacity(), d->id.size());
+    EXPECT_EQ(d->body.capacity(), d->body.size());
+    EXPECT_EQ(d->mass.capacity(), d->mass.size());
+    EXPECT_EQ(d->volume.capacity(), d->volume.size());
+    EXPECT_EQ(d->failed.capacity(), d->failed.size());
+    EXPECT_EQ(d->spacing.capacity(), d->spacing.size());
+  }
+}
+
 }  // namespace
 }  // namespace hvi::analysis
