@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
-#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -98,16 +99,21 @@ Projectile find_projectile(const analysis::Snapshot& s) {
 }
 
 // A run opened for measuring: its scene, its snapshots, and what every snapshot's measure takes
-// from the state at t = 0 (read and mirrored once, for one snapshot or all of them).
+// from the state at t = 0 (read once, for one snapshot or all of them). Only the particles a
+// measure reads are mirrored: a half or quarter model's full copy would hold 2-4 times the
+// run's points.
 struct OpenRun {
   RunInfo info;
   std::map<std::size_t, fs::path> snapshots;
   analysis::Snapshot first;
   analysis::MirrorPlanes mirror;
   std::int64_t stride = 1;  // id offset of mirror images: above every id at t = 0 (a growing zone adds more)
-  ParticleData initial;     // `first`, mirrored
   Projectile projectile;
-  std::unordered_map<std::int64_t, double> initial_z;  // id -> z at t = 0
+  ParticleData projectile_initial;  // the projectile's points at t = 0, mirrored
+  // z at t = 0 by id (NaN: no point of that id at t = 0). Mirroring keeps z, so an image's is its
+  // original's, id modulo the stride.
+  std::vector<double> initial_z;
+  std::vector<double> body_mean_z;  // per body, at t = 0: the z of a point a growing zone adds
 };
 
 OpenRun open_run(const MeasureOptions& o) {
@@ -129,13 +135,27 @@ OpenRun open_run(const MeasureOptions& o) {
   if (r.first.step != 0)
     throw std::invalid_argument(fmt::format("{}: written at step {}, expected the state at step 0",
                                             r.snapshots.at(0).string(), r.first.step));
+  const ParticleData& p = r.first.particles;
   attach_spacing(r.first.particles, r.first.volume0, r.info, r.first.file);
-  for (const std::int64_t id : r.first.particles.id) r.stride = std::max(r.stride, id + 1);
+  for (const std::int64_t id : p.id) {
+    if (id < 0)
+      throw std::invalid_argument(fmt::format("{}: particle id {} (ids are not negative)", r.first.file.string(), id));
+    r.stride = std::max(r.stride, id + 1);
+  }
   r.mirror = o.mirror ? r.info.mirror : analysis::MirrorPlanes{};
-  r.initial = analysis::mirrored(r.first.particles.view(), r.mirror, r.stride);
   r.projectile = find_projectile(r.first);
-  for (std::size_t k = 0; k < r.initial.size(); ++k)
-    r.initial_z.emplace(r.initial.id[k], r.initial.position[3 * k + 2]);
+  if (r.projectile.body >= 0)
+    r.projectile_initial = analysis::mirrored(p.view(), r.mirror, r.stride,
+                                              analysis::particles_of(p.view(), r.projectile.body, false));
+  r.initial_z.assign(static_cast<std::size_t>(r.stride), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::pair<double, double>> body_z(r.info.bodies.size());  // (sum z, count)
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double z = p.position[3 * k + 2];
+    r.initial_z[static_cast<std::size_t>(p.id[k])] = z;
+    body_z[static_cast<std::size_t>(p.body[k])].first += z;
+    body_z[static_cast<std::size_t>(p.body[k])].second += 1;
+  }
+  for (const auto& [sum, count] : body_z) r.body_mean_z.push_back(count > 0 ? sum / count : std::nan(""));
   return r;
 }
 
@@ -160,9 +180,27 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
   const int front_body = front.empty() ? -1 : facesheet_body(info, front, "--front");
   const int rear_body = rear.empty() ? -1 : facesheet_body(info, rear, "--rear");
 
-  // The chosen snapshot, mirrored as the first.
-  analysis::Snapshot now = index == 0 ? first : analysis::read_snapshot(run.snapshots.at(index));
-  if (index != 0) attach_spacing(now.particles, now.volume0, info, now.file);
+  // The back face the debris is counted behind: the last sheet's (particle centres sit half a
+  // spacing inside it). Mirroring keeps z, so the first snapshot's own points give it.
+  const int behind = rear_body >= 0 ? rear_body : front_body;
+  double z_back = INFINITY, debris_threshold = 0;
+  if (behind >= 0) {
+    const ParticleData& p = first.particles;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (p.body[k] == behind) z_back = std::min(z_back, p.position[3 * k + 2] - p.spacing[k] / 2);
+    if (!std::isfinite(z_back))
+      throw std::invalid_argument(
+          fmt::format("body '{}' has no particles", info.bodies[behind].name));
+    debris_threshold = info.bodies[behind].spacing;
+  }
+
+  // The chosen snapshot.
+  std::optional<analysis::Snapshot> read;
+  if (index != 0) {
+    read = analysis::read_snapshot(run.snapshots.at(index));
+    attach_spacing(read->particles, read->volume0, info, read->file);
+  }
+  const analysis::Snapshot& now = index == 0 ? first : *read;
   out.snapshot_file = now.file;
   out.time = now.time;
   out.step = now.step;
@@ -174,10 +212,18 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
   std::int64_t stride = run.stride;
   for (const std::int64_t id : now.particles.id) stride = std::max(stride, id + 1);
   out.mirror = run.mirror;
-  ParticleData remirrored;
-  if (stride != run.stride) remirrored = analysis::mirrored(run.first.particles.view(), out.mirror, stride);
-  const ParticleData& initial = stride == run.stride ? run.initial : remirrored;
-  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, stride);
+  // What the measures read, mirrored: the facesheets, and whatever lies behind the back face
+  // (debris candidates; the debris test itself is one spacing further back).
+  std::vector<std::size_t> read_points;
+  {
+    const ParticleData& p = now.particles;
+    const double z_debris = z_back - debris_threshold / 2;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (p.body[k] == front_body || p.body[k] == rear_body || p.position[3 * k + 2] < z_debris)
+        read_points.push_back(k);
+  }
+  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, stride, read_points);
+  read_points = {};
 
   // The impact axis.
   const Projectile& projectile = run.projectile;
@@ -187,13 +233,13 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     if (projectile.body < 0)
       throw std::invalid_argument(
           "no body moves at t = 0 to take the impact axis from: give --axis x0,y0");
+    const ParticleData& initial = run.projectile_initial;
     double m = 0, x = 0, y = 0;
-    for (std::size_t k = 0; k < initial.size(); ++k)
-      if (initial.body[k] == projectile.body) {
-        m += initial.mass[k];
-        x += initial.mass[k] * initial.position[3 * k];
-        y += initial.mass[k] * initial.position[3 * k + 1];
-      }
+    for (std::size_t k = 0; k < initial.size(); ++k) {
+      m += initial.mass[k];
+      x += initial.mass[k] * initial.position[3 * k];
+      y += initial.mass[k] * initial.position[3 * k + 1];
+    }
     // To a picometre: the centroid of a mirrored set is on the plane only to round-off (1e-21 m).
     // (+ 0.0 turns -0 into 0.)
     out.axis = {std::round(x / m * 1e12) / 1e12 + 0.0, std::round(y / m * 1e12) / 1e12 + 0.0};
@@ -224,9 +270,12 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     auto [s, view] = measure_sheet(rear_body, o.rear_rule);
     out.rear = s;
     rear_attached = view.attached;
-    if (!s.hole.perforated && !view.attached.empty())
-      out.bulge =
-          analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
+    if (!s.hole.perforated && !view.attached.empty()) {
+      const ParticleSet p = first.particles.view();
+      const ParticleData initial =
+          analysis::mirrored(p, out.mirror, stride, analysis::particles_of(p, rear_body, false));
+      out.bulge = analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
+    }
     if (o.images) out.rear_view = std::move(view);
   }
 
@@ -238,44 +287,23 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
       out.front->hole.resolution > 0 && out.rear->hole.resolution > 0 && out.core_height)
     out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
 
-  // Debris behind the last sheet's back face (particle centres sit half a spacing inside it).
-  const int behind = rear_body >= 0 ? rear_body : front_body;
+  // Debris behind the last sheet's back face.
   if (behind >= 0) {
-    double z_back = INFINITY;
-    for (std::size_t k = 0; k < initial.size(); ++k)
-      if (initial.body[k] == behind)
-        z_back = std::min(z_back, initial.position[3 * k + 2] - initial.spacing[k] / 2);
-    if (!std::isfinite(z_back))
-      throw std::invalid_argument(
-          fmt::format("body '{}' has no particles", info.bodies[behind].name));
     analysis::DebrisOptions d;
     d.axis_point = {out.axis[0], out.axis[1], 0};
     d.direction = impact_direction;
     d.back_face = -z_back;  // (x - a) . d with d = -z
-    d.threshold = info.bodies[behind].spacing;
+    d.threshold = debris_threshold;
     // Not debris: the sheet's own attached material (a bulge, petals), and material that was
     // behind the face from the start (the rest of a panel when only --front is named).
     std::vector<std::size_t> excluded = rear_body >= 0 ? rear_attached : front_attached;
     // z at t = 0; a point added later by a growing zone (a panel layer's) takes its body's
     // mean z at t = 0, which is its layer's.
-    std::unordered_map<std::int64_t, double> remirrored_z;
-    std::unordered_map<std::int64_t, std::pair<double, double>> body_z;  // body -> (sum z, count)
-    if (stride != run.stride)  // only then are there born points
-      for (std::size_t k = 0; k < initial.size(); ++k) {
-        remirrored_z.emplace(initial.id[k], initial.position[3 * k + 2]);
-        auto& [sum, count] = body_z[initial.body[k]];
-        sum += initial.position[3 * k + 2];
-        count += 1;
-      }
-    const auto& initial_z = stride == run.stride ? run.initial_z : remirrored_z;
     for (std::size_t k = 0; k < current.size(); ++k) {
-      const auto it = initial_z.find(current.id[k]);
-      double z0 = current.position[3 * k + 2];
-      if (it != initial_z.end()) {
-        z0 = it->second;
-      } else if (const auto b = body_z.find(current.body[k]); b != body_z.end()) {
-        z0 = b->second.first / b->second.second;
-      }
+      const auto original = static_cast<std::size_t>(current.id[k] % stride);
+      double z0 = original < run.initial_z.size() ? run.initial_z[original] : std::nan("");
+      if (std::isnan(z0)) z0 = run.body_mean_z[static_cast<std::size_t>(current.body[k])];
+      if (std::isnan(z0)) z0 = current.position[3 * k + 2];
       if (z0 < z_back - d.threshold) excluded.push_back(k);
     }
     out.debris = analysis::debris_cloud(current.view(), d, excluded);
@@ -300,9 +328,7 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
       *d *= 2;
     } else {  // the diameter of the sphere of the same volume
       double v = 0;
-      for (std::size_t k = 0; k < initial.size(); ++k)
-        if (initial.body[k] == projectile.body)
-          v += initial.volume[k];  // at t = 0, the initial volume
+      for (const double volume : run.projectile_initial.volume) v += volume;  // at t = 0, the initial volume
       d = std::cbrt(6 * v / std::numbers::pi);
     }
     add("d_p", d);

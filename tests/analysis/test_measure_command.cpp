@@ -6,6 +6,7 @@
 #include <map>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -118,7 +119,8 @@ void write(const fs::path& file, const Frame& f, double time, std::int64_t step)
 // A run: the front has a hole of radius 1 mm (failed), the rear is pushed by a Gaussian bump of
 // 0.25 mm (width 1 mm) or, with `rear_hole`, has an elliptic hole 1.6 x 1.2 mm; the projectile sits
 // 2 mm behind the rear face as debris, spread 0.5 mm off the axis.
-fs::path make_run(const std::string& name, bool rear_hole) {
+// `last` may change the last frame before it is written.
+fs::path make_run(const std::string& name, bool rear_hole, const std::function<void(Frame&)>& last = {}) {
   const fs::path dir = fs::path(testing::TempDir()) / ("hvi_measure_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -136,6 +138,7 @@ fs::path make_run(const std::string& name, bool rear_hole) {
       if (!rear_hole) x[2] -= 0.25 * mm * std::exp(-r2 / (mm * mm));
     }
   }
+  if (last) last(f);
   write(dir / "snapshots" / "particles_000001.h5", f, 10e-6, 1000);
   return dir;
 }
@@ -322,6 +325,35 @@ TEST(MeasureCommand, BadInputIsReported) {
   EXPECT_THROW(measure_run(o), std::invalid_argument);
   o.run = dir / "missing";
   EXPECT_THROW(measure_run(o), std::invalid_argument);
+}
+
+// A hybrid's growing zone adds points after t = 0, with ids beyond every id of the first
+// snapshot. Such a point is mirrored with the rest (a larger id offset) and, having no state at
+// t = 0, takes its layer's: a core point that flew behind the rear face is debris, it and its
+// image, and nothing else the measure reads moves.
+TEST(MeasureCommand, APointAGrowingZoneAddsIsMirroredAndCountedByItsLayer) {
+  MeasureOptions o;
+  o.run = make_run("grown_before", true);
+  const Measurements before = measure_run(o);
+  const double m = 1e-9;
+  o.run = make_run("grown", true, [&](Frame& f) {
+    f.p.position.insert(f.p.position.end(), {0.3 * mm, 0.2 * mm, -7.0 * mm});
+    f.p.id.push_back(static_cast<std::int64_t>(f.p.id.size()) + 100);
+    f.p.body.push_back(2);  // panel.core
+    f.p.mass.push_back(m);
+    f.p.volume.push_back(m / 2700);
+    f.p.failed.push_back(1);
+    f.velocity.insert(f.velocity.end(), {0.0, 0.0, -500.0});
+  });
+  const Measurements after = measure_run(o);
+  EXPECT_EQ(after.debris.particles, before.debris.particles + 2);
+  EXPECT_NEAR(after.debris.mass, before.debris.mass + 2 * m, 1e-12 * before.debris.mass);
+  EXPECT_NEAR(after.debris.kinetic_energy, before.debris.kinetic_energy + m * 500.0 * 500.0,
+              1e-12 * before.debris.kinetic_energy);
+  EXPECT_EQ(after.debris.axial_extent, before.debris.axial_extent);  // 1.4 mm behind, the block 2.35
+  EXPECT_EQ(after.axis, before.axis);
+  EXPECT_EQ(after.front->hole.D, before.front->hole.D);
+  EXPECT_EQ(after.rear->hole.D, before.rear->hole.D);
 }
 
 }  // namespace
