@@ -384,6 +384,30 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   EXPECT_NE(read(two / "measurements.json").find("\"perforated\" : true"), std::string::npos);
 }
 
+// A run with a kind = "holes" measure measures its last snapshot after the solver is freed: what
+// it writes (measurements.json, the summary's hole sizes) is what hvi measure gives the run
+// directory afterwards, byte for byte, and the summary has the command's peak memory with the
+// measurement beside the run's. The demo on 0.8 mm cells to 1 us (front sheet perforated, rear
+// sheet whole: the bulge, which reads the first snapshot's rear sheet, is measured too).
+TEST(Cli, TheRunsOwnHoleMeasurementIsTheStandaloneOne) {
+  const fs::path out = scratch("holes");
+  ASSERT_EQ(run("run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + out.string() +
+                " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm'"),
+            0);
+  const std::string own = read(out / "measurements.json");
+  EXPECT_NE(own.find("\"rear_bulge\""), std::string::npos) << own;
+  EXPECT_EQ(summary_number(out, "front_perforated"), 1.0);
+  EXPECT_EQ(summary_number(out, "rear_perforated"), 0.0);
+  EXPECT_GT(summary_number(out, "peak_memory_with_measure_bytes"), 0.0);
+  EXPECT_GT(summary_number(out, "peak_memory_bytes"), 0.0);
+  const double D_f = summary_number(out, "D_f");
+  ASSERT_EQ(run("measure " + out.string()), 0);
+  EXPECT_TRUE(read(out / "measurements.json") == own);
+  const auto front_D = own.find("\"D\" : ");  // the front sheet's comes first
+  ASSERT_NE(front_D, std::string::npos) << own;
+  EXPECT_EQ(std::stod(own.substr(front_D + 6)), D_f);
+}
+
 // A body in free flight: every particle keeps its velocity and moves with the grid velocity,
 // which a uniform field reproduces exactly, so the probe reads v t to round-off.
 TEST(Cli, DisplacementProbeFollowsARigidTranslation) {
