@@ -318,7 +318,8 @@ struct FarField::Impl {
   // The cell batches in colours: no two batches of a colour share a node, so within a colour
   // they scatter into disjoint entries and run in parallel (OpenMP), while the colours run in
   // order. Every entry then receives its contributions in the same order for any thread count:
-  // the far field is bitwise the same on 1 or N threads.
+  // the far field is bitwise the same on 1 or N threads. A batch whose cells remove_cells has
+  // all taken out adds nothing (no stiffness, no plastic state) and leaves its colour.
   std::vector<std::vector<unsigned>> colours;
 
   // body(phi, batch) for every cell batch, colour by colour, with one FEEvaluation per thread.
@@ -833,6 +834,13 @@ std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
     }
   if (newly == 0) return 0;
   I.removed_cells += newly;
+  for (auto& colour : I.colours)
+    std::erase_if(colour, [&](unsigned cell) {
+      for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
+        if (!I.lane_removed[Impl::W * cell + lane]) return false;
+      if (!I.batch_stretch.empty()) I.batch_stretch[cell] = 1.0;  // what its kept cells would give: none
+      return true;
+    });
   I.lump_mass();
   for (std::size_t a = 0; a < I.mass.size(); ++a)
     if (I.mass[a] == 0.0)
@@ -841,6 +849,11 @@ std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
 }
 
 std::size_t FarField::removed_cell_count() const { return impl_->removed_cells; }
+std::size_t FarField::evaluated_batch_count() const {
+  std::size_t n = 0;
+  for (const auto& colour : impl_->colours) n += colour.size();
+  return n;
+}
 bool FarField::plastic() const { return impl_->any_plastic(); }
 bool FarField::finite_strain() const { return impl_->spec.finite_strain; }
 

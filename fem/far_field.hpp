@@ -159,6 +159,9 @@ class FarField {
   // books them (the difference of kinetic_energy() and strain_energy() across the call).
   std::size_t remove_cells(const std::array<double, 4>& box);
   std::size_t removed_cell_count() const;
+  // The cell batches (of VectorizedArray's width) the element loops visit: those with a cell
+  // not removed. A zone grown over the far field's cells takes their cost with them.
+  std::size_t evaluated_batch_count() const;
 
   // Whether the kinematics are finite (Green-Lagrange) rather than small strain.
   bool finite_strain() const;

@@ -105,8 +105,12 @@ TEST(RemoveCells, LeavesTheFarFieldOfAMeshBuiltWithTheHole) {
         for (const double x : whole.lumped_mass()) m += x;
         return m;
       }();
+      const std::size_t batches = whole.evaluated_batch_count();
       EXPECT_EQ(whole.remove_cells(hole), whole.cell_count() - holed.cell_count());
       EXPECT_EQ(whole.remove_cells(hole), 0u);  // already removed
+      // The element loops skip the batches whose cells are all out (the forces below are the
+      // holed mesh's all the same).
+      EXPECT_LT(whole.evaluated_batch_count(), batches);
       EXPECT_EQ(whole.removed_cell_count(), whole.cell_count() - holed.cell_count());
       set_state(holed);
       set_state(whole);
@@ -164,6 +168,24 @@ TEST(RemoveCells, LeavesTheFarFieldOfAMeshBuiltWithTheHole) {
         for (int k = 0; k < 3; ++k) EXPECT_EQ(whole.velocity()[3 * m + k], 0.0);
       }
     }
+}
+
+// A far field whose every cell a zone took over costs nothing: its element loops visit no batch,
+// and it holds no mass, force or energy.
+TEST(RemoveCells, AFarFieldTakenOverWhollyVisitsNoCell) {
+  for (const bool plastic : {false, true}) {
+    FarField f(sandwich(1, plastic, std::nullopt));
+    set_state(f);
+    EXPECT_GT(f.evaluated_batch_count(), 0u);
+    EXPECT_EQ(f.remove_cells({-1.0, -1.0, 1.0, 1.0}), f.cell_count());
+    EXPECT_EQ(f.evaluated_batch_count(), 0u);
+    std::vector<double> force(3 * f.node_count(), 1.0);
+    f.internal_force(force);
+    for (const double x : force) EXPECT_EQ(x, 0.0);
+    for (const double m : f.lumped_mass()) EXPECT_EQ(m, 0.0);
+    EXPECT_EQ(f.strain_energy(), 0.0);
+    EXPECT_EQ(f.kinetic_energy(), 0.0);
+  }
 }
 
 // u = A X + c and v = B X + w: every element holds them exactly, so a sample anywhere gives them,
