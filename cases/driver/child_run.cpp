@@ -45,6 +45,7 @@ RunSummary read_run_summary(const std::filesystem::path& run_dir) {
   // All the invocations of a resumed run, where its checkpoint recorded them.
   s.wall_seconds = t["wall_seconds_total"].value_or(t["wall_seconds"].value_or(0.0));
   s.peak_memory = static_cast<double>(t["peak_memory_bytes"].value_or(std::int64_t{0}));
+  if (const auto m = t["peak_memory_with_measure_bytes"].value<std::int64_t>()) s.peak_memory_with_measure = static_cast<double>(*m);
   s.particles = static_cast<double>(t["particles"].value_or(std::int64_t{0}));
   s.steps = static_cast<double>(t["steps"].value_or(std::int64_t{0}));
   s.energy_balance = t["energy_balance"].value_or(0.0);

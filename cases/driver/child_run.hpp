@@ -3,6 +3,7 @@
 // `hvi run` in its own directory with its own log, so it can be inspected, resumed or re-run
 // alone, and its peak memory is its own.
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -21,6 +22,8 @@ std::string shell_quote(const std::string& s);
 struct RunSummary {
   std::string status;  // finished, stopped, interrupted; empty: no summary
   double wall_seconds = 0, peak_memory = 0, particles = 0, steps = 0, energy_balance = 0;
+  // The command's peak with its hole measurement (NaN: no such measure, or an older run).
+  double peak_memory_with_measure = std::numeric_limits<double>::quiet_NaN();
   std::map<std::string, double> measures;
   bool finished() const { return status == "finished"; }
 };

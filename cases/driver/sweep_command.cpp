@@ -125,7 +125,8 @@ void write_table(const Study& study, const std::vector<std::string>& selected, c
       if (std::find(axes.begin(), axes.end(), axis) == axes.end()) axes.push_back(axis);
   std::vector<std::string> columns{"run"};
   columns.insert(columns.end(), axes.begin(), axes.end());
-  for (const char* c : {"status", "wall_seconds", "steps", "particles", "peak_memory_bytes", "energy_balance"}) columns.emplace_back(c);
+  for (const char* c : {"status", "wall_seconds", "steps", "particles", "peak_memory_bytes", "peak_memory_with_measure_bytes",
+                        "energy_balance"}) columns.emplace_back(c);
   const std::size_t fixed = columns.size();
   std::vector<std::map<std::string, std::string>> rows;
   for (const auto& r : runs) {
@@ -140,6 +141,7 @@ void write_table(const Study& study, const std::vector<std::string>& selected, c
       row["steps"] = number(s.steps);
       row["particles"] = number(s.particles);
       row["peak_memory_bytes"] = number(s.peak_memory);
+      row["peak_memory_with_measure_bytes"] = number(s.peak_memory_with_measure);
       row["energy_balance"] = number(s.energy_balance);
     }
     auto add = [&](const std::string& column, const std::string& value) {

@@ -109,7 +109,13 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   ASSERT_EQ(rows.size(), 5u);
   EXPECT_EQ(rows["v200_r15"]["speed"], "v200");
   EXPECT_EQ(rows["v200_r15"]["size"], "r15");
-  for (const auto& [name, row] : rows) EXPECT_EQ(row.at("status"), "finished") << name;
+  for (const auto& [name, row] : rows) {
+    EXPECT_EQ(row.at("status"), "finished") << name;
+    // The run's peak memory; the command's with a hole measurement only where a run has one
+    // (these do not).
+    EXPECT_GT(std::stod(row.at("peak_memory_bytes")), 0.0) << name;
+    EXPECT_EQ(row.at("peak_memory_with_measure_bytes"), "") << name;
+  }
   // A free elastic sphere translates rigidly: its front advances by v t, so the 200 m/s runs lead
   // the 100 m/s ones by 100 m/s x 2 us = 0.2 mm, and the still one stays where it started.
   auto front = [&](const std::string& run) { return std::stod(rows[run]["front"]); };
