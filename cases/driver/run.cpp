@@ -1,7 +1,7 @@
 #include "cases/driver/run.hpp"
 
-#include <omp.h>
 #include <malloc.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -175,7 +175,6 @@ std::size_t peak_memory_bytes() {
     if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
   return 0;
 }
-
 
 int run_scene(const scene::Scene& scene, const RunOptions& options) {
   const fs::path dir = options.out;
