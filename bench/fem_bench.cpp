@@ -12,7 +12,8 @@
 //   core          0 elastic, 1 yielding (core = "yielding": the caps' return at every core
 //                 quadrature point), 2 failing (core = "failing": the caps and the walls' damage)
 // Run with OMP_NUM_THREADS=1 and 2 (the cell loops run on OpenMP threads). Reports
-// node_steps_per_s (nodes x steps / wall time) and bytes_per_node.
+// node_steps_per_s (nodes x steps / wall time) and bytes_per_node. FarFieldPanelTakenOver: the
+// cost of the cells a growing zone has taken (below).
 #include <benchmark/benchmark.h>
 
 #include "fem/far_field.hpp"
@@ -69,6 +70,29 @@ void FarFieldPanel(benchmark::State& state) {
       benchmark::Counter(nodes * steps * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["bytes_per_node"] = static_cast<double>(f.bytes()) / nodes;
 }
+
+// The same far field (Q1, failing J2 facesheets, failing core: the growing-zone runs' settings)
+// after a zone grew over it out to `taken` mm from the axis (remove_cells; 0: none). Its step
+// should cost in proportion to the cells kept: reports kept_cell_steps_per_s beside the nodes'.
+void FarFieldPanelTakenOver(benchmark::State& state) {
+  hvi::fem::FarField f(study_panel_quarter(1, 2, false, 2));
+  const double taken = 1e-3 * static_cast<double>(state.range(0));
+  if (taken > 0) f.remove_cells({-1.0, -1.0, taken, taken});
+  const double dt = 0.9 * f.stable_time_step();
+  auto v = f.velocity();
+  for (std::size_t a = 0; a < f.node_count(); ++a) v[3 * a + 2] = 1.0;
+  const int steps = 100;
+  for (auto _ : state)
+    for (int s = 0; s < steps; ++s) f.step(dt);
+  const double nodes = static_cast<double>(f.node_count()), kept = static_cast<double>(f.cell_count() - f.removed_cell_count());
+  state.counters["cells_kept"] = kept;
+  state.counters["batches_visited"] = static_cast<double>(f.evaluated_batch_count());
+  state.counters["node_steps_per_s"] = benchmark::Counter(nodes * steps * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["kept_cell_steps_per_s"] = benchmark::Counter(kept * steps * state.iterations(), benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(FarFieldPanelTakenOver)->ArgName("taken_mm")->Arg(0)->Arg(40)->Arg(80)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 BENCHMARK(FarFieldPanel)
     ->ArgNames({"degree", "facesheets", "finite", "core"})
