@@ -9,12 +9,12 @@
 
 namespace hvi::coupling {
 
-std::array<double, 4> grown_zone(const mpm::Particles& P, std::span<const std::int64_t> bodies,
-                                 const std::array<double, 4>& zone, const ZoneGrowth& growth) {
+std::array<bool, 4> sides_reached(const mpm::Particles& P, std::span<const std::int64_t> bodies,
+                                  const std::array<double, 4>& zone, const ZoneGrowth& growth) {
+  std::array<bool, 4> reached{};
   const std::vector<double>* damage = P.has_field("damage") ? &P.field("damage") : nullptr;
   const std::vector<double>* failed = P.has_field("failed") ? &P.field("failed") : nullptr;
-  if (!damage && !failed) return zone;
-  std::array<bool, 4> reached{};
+  if (!damage && !failed) return reached;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const bool damaged = (damage && (*damage)[p] >= growth.damage) || (failed && (*failed)[p] > 0.0);
     if (!damaged || std::find(bodies.begin(), bodies.end(), P.body[p]) == bodies.end()) continue;
@@ -29,6 +29,11 @@ std::array<double, 4> grown_zone(const mpm::Particles& P, std::span<const std::i
     reached[2] = reached[2] || x > zone[2] - growth.margin;
     reached[3] = reached[3] || y > zone[3] - growth.margin;
   }
+  return reached;
+}
+
+std::array<double, 4> grown_zone(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
+                                 const ZoneGrowth& growth) {
   std::array<double, 4> grown = zone;
   for (int side = 0; side < 4; ++side) {
     if (!reached[side] || !growth.movable[side]) continue;
@@ -37,6 +42,20 @@ std::array<double, 4> grown_zone(const mpm::Particles& P, std::span<const std::i
                            : std::min(zone[side] + growth.step, growth.limit[side]);
   }
   return grown;
+}
+
+std::array<double, 4> grown_zone(const mpm::Particles& P, std::span<const std::int64_t> bodies,
+                                 const std::array<double, 4>& zone, const ZoneGrowth& growth) {
+  return grown_zone(sides_reached(P, bodies, zone, growth), zone, growth);
+}
+
+std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
+                                        const ZoneGrowth& growth) {
+  std::array<bool, 4> held{};
+  // A side that reached its limit holds it exactly (grown_zone's max and min return the limit).
+  for (int side = 0; side < 4; ++side)
+    held[side] = reached[side] && growth.movable[side] && zone[side] == growth.limit[side];
+  return held;
 }
 
 std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone, const std::array<double, 4>& grown) {

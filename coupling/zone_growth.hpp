@@ -58,10 +58,23 @@ struct ZoneGrowth {
   std::array<bool, 4> movable{true, true, true, true};
 };
 
-// The zone grown as above from the points of `bodies` (indices into the scene's bodies), or
-// `zone` itself when no side needs to move.
+// Per side of `zone` (x0, y0, x1, y1): whether a damaged point of `bodies` (indices into the
+// scene's bodies) reaches it, as above, whether or not the side may move.
+std::array<bool, 4> sides_reached(const mpm::Particles& particles, std::span<const std::int64_t> bodies,
+                                  const std::array<double, 4>& zone, const ZoneGrowth& growth);
+
+// The zone grown by `step` on the movable sides `reached` names, each up to its limit; `zone`
+// itself when no side needs to move.
+std::array<double, 4> grown_zone(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
+                                 const ZoneGrowth& growth);
 std::array<double, 4> grown_zone(const mpm::Particles& particles, std::span<const std::int64_t> bodies,
                                  const std::array<double, 4>& zone, const ZoneGrowth& growth);
+
+// The sides `reached` names that would move but are at their limit: there the damage reaches
+// the far field, which cannot hold it (it tears only as its failing layers let it, and sprays no
+// debris), so the limit, not the damage, bounds the zone.
+std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
+                                        const ZoneGrowth& growth);
 
 // The ring `grown` adds to `zone` (grown holds zone), as up to four in-plane boxes x0, y0, x1, y1
 // that do not overlap: below and above the zone along y over the grown zone's width, and left and

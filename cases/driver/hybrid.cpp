@@ -1,5 +1,6 @@
 #include "cases/driver/hybrid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <regex>
@@ -183,7 +184,14 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   if (!growth_) return std::nullopt;
   const std::array<double, 4> zone = coupling_->band().zone;
   const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
-  const std::array<double, 4> grown = coupling::grown_zone(solver.particles(), bodies, zone, *growth_);
+  const std::array<bool, 4> reached = coupling::sides_reached(solver.particles(), bodies, zone, *growth_);
+  const std::array<bool, 4> held = coupling::sides_held_at_limit(reached, zone, *growth_);
+  if (std::find(held.begin(), held.end(), true) != held.end()) {
+    if (held_at_limit_.steps++ == 0) held_at_limit_.first_time = solver.time();
+    held_at_limit_.last_time = solver.time();
+    for (int side = 0; side < 4; ++side) held_at_limit_.sides[side] = held_at_limit_.sides[side] || held[side];
+  }
+  const std::array<double, 4> grown = coupling::grown_zone(reached, zone, *growth_);
   if (grown == zone) return std::nullopt;
   coupling::NewPoints points = sample_ring(coupling::ring(zone, grown), solver);
   spec_.zone = grown;
@@ -197,6 +205,26 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
                                           {solid, walls, solid});
   last_points_ = std::move(points.position);
   return report;
+}
+
+void Hybrid::save(std::map<std::string, double>& extras) const {
+  if (!growth_) return;
+  const LimitRecord& r = held_at_limit_;
+  extras["zone_limit_steps"] = static_cast<double>(r.steps);
+  extras["zone_limit_first_time"] = r.first_time;
+  extras["zone_limit_last_time"] = r.last_time;
+  extras["zone_limit_sides"] = r.sides[0] + 2 * r.sides[1] + 4 * r.sides[2] + 8 * r.sides[3];
+}
+
+void Hybrid::load(const std::map<std::string, double>& extras) {
+  const auto steps = extras.find("zone_limit_steps");
+  if (!growth_ || steps == extras.end()) return;  // a checkpoint from before hvi kept the record: none so far
+  LimitRecord& r = held_at_limit_;
+  r.steps = static_cast<std::int64_t>(steps->second);
+  r.first_time = extras.at("zone_limit_first_time");
+  r.last_time = extras.at("zone_limit_last_time");
+  const auto sides = static_cast<unsigned>(extras.at("zone_limit_sides"));
+  for (int side = 0; side < 4; ++side) r.sides[side] = (sides >> side) & 1u;
 }
 
 std::unique_ptr<Hybrid> make_hybrid(const scene::Scene& scene, mpm::Solver& solver) {

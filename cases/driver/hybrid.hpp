@@ -4,7 +4,9 @@
 // band (coupling/far_field_coupling.hpp). A scene without [far_field] never constructs one, so
 // nothing of fem/ runs, is allocated or is written for it.
 #include <array>
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,6 +54,19 @@ class Hybrid {
   const std::vector<double>& last_points() const { return last_points_; }
   // The zone now (x0, y0, x1, y1, m).
   const std::array<double, 4>& zone() const { return coupling_->band().zone; }
+
+  // Where grow() found the panel's damage at a side of the zone already at its limit
+  // (coupling::sides_held_at_limit): at how many steps, the first and last time, and which sides
+  // (x0, y0, x1, y1). A limit that stops the zone while the damage goes on tells the user to widen
+  // it. Kept in the checkpoint, so a resumed run reports the whole run's.
+  struct LimitRecord {
+    std::int64_t steps = 0;
+    double first_time = 0.0, last_time = 0.0;
+    std::array<bool, 4> sides{};
+  };
+  const LimitRecord& held_at_limit() const { return held_at_limit_; }
+  void save(std::map<std::string, double>& checkpoint_extras) const;
+  void load(const std::map<std::string, double>& checkpoint_extras);
   // The points a grown zone gets over the ring's `boxes` (in plane, x0, y0, x1, y1; coupling::ring):
   // the panel's bodies cut to each and sampled, undeformed.
   coupling::NewPoints sample_ring(const std::vector<std::array<double, 4>>& boxes, const mpm::Solver& solver) const;
@@ -63,6 +78,7 @@ class Hybrid {
   std::array<std::size_t, 3> panel_bodies_{};  // front, core, rear
   std::optional<geometry::HexPattern> pattern_;  // the panel's cells, for its walls' directions
   std::vector<double> last_points_;
+  LimitRecord held_at_limit_;
   std::unique_ptr<fem::FarField> far_field_;
   std::unique_ptr<coupling::FarFieldCoupling> coupling_;
   std::vector<std::pair<double, std::string>> snapshots_;  // (time, file)

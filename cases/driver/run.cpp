@@ -160,6 +160,14 @@ void append_resume_record(const fs::path& dir, const RunOptions& options, int th
   std::ofstream(dir / "resumes.jsonl", std::ios::app) << line << '\n';
 }
 
+// The zone's sides (x0, y0, x1, y1) that `sides` names, as "x = 28 mm, y = 28 mm".
+std::string side_names(const std::array<bool, 4>& sides, const std::array<double, 4>& zone) {
+  std::string names;
+  for (int side = 0; side < 4; ++side)
+    if (sides[side]) names += fmt::format("{}{} = {:.4g} mm", names.empty() ? "" : ", ", side % 2 ? 'y' : 'x', 1e3 * zone[side]);
+  return names;
+}
+
 void write_timing(const fs::path& dir, const mpm::PhaseTimer& timer) {
   std::ofstream out(dir / "timing.csv");
   out << "phase,seconds,calls\n";
@@ -253,7 +261,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
 
   if (options.resume) {
     snapshots.resume(s.step_count());
-    if (hybrid) hybrid->resume(dir, s.step_count());
+    if (hybrid) {
+      hybrid->resume(dir, s.step_count());
+      hybrid->load(extras);
+    }
     output.next = extras.at("next_output_time");
     checkpoints.next = extras.at("next_checkpoint_time");
     initial_energy = extras.at("initial_energy");
@@ -293,6 +304,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                                      {"peak_pressure", record.peak_pressure}};
     if (!std::isnan(earlier_wall)) extras["wall_seconds"] = earlier_wall + wall;
     probes->save(extras);
+    if (hybrid) hybrid->save(extras);
     mpm::io::write_checkpoint(dir / "checkpoint.h5", s, extras);
   };
   // A checkpoint exists from the start, so a run that fails always leaves one from before.
@@ -320,7 +332,16 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       report_removals(s, s.take_removal_events(), reported_removals);
       if (hybrid && hybrid->growing()) {
         auto t = timer.scope("grow the MPM zone");
-        if (const auto r = hybrid->grow(s)) {
+        const std::array<bool, 4> held_before = hybrid->held_at_limit().sides;
+        const auto r = hybrid->grow(s);
+        if (hybrid->held_at_limit().sides != held_before) {
+          std::array<bool, 4> now{};
+          for (int side = 0; side < 4; ++side) now[side] = hybrid->held_at_limit().sides[side] && !held_before[side];
+          fmt::print("  step {}, t = {:.6g} s: the panel's damage reached the MPM zone's edge at {}, its limit "
+                     "(far_field.zone.grow): the far field there holds damage it cannot; a wider limit lets the zone go on\n",
+                     s.step_count(), s.time(), side_names(now, hybrid->zone()));
+        }
+        if (r) {
           probes->zone_grew(s, r->first_id);
           const auto& z = hybrid->zone();
           fmt::print("  step {}, t = {:.6g} s: the MPM zone grew to [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm: {} points "
@@ -455,6 +476,14 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       summary.insert("mpm_zone", toml::array{z[0], z[1], z[2], z[3]});
       summary.insert("far_field_elements_taken_over", static_cast<std::int64_t>(hybrid->far_field().removed_cell_count()));
       summary.insert("energy_not_carried_over", hybrid->coupling().converted_energy());
+      // Whether the limit, not the damage, stopped the zone: the steps at which the panel's
+      // damage reached a side at its limit, and the first and last time it did.
+      const Hybrid::LimitRecord& held = hybrid->held_at_limit();
+      summary.insert("mpm_zone_limit_reached_steps", held.steps);
+      if (held.steps > 0) {
+        summary.insert("mpm_zone_limit_reached_first_time", held.first_time);
+        summary.insert("mpm_zone_limit_reached_last_time", held.last_time);
+      }
     }
     if (hybrid->far_field().plastic()) {  // only when the scene asks for J2 facesheets or a yielding core
       summary.insert("far_field_max_plastic_strain", hybrid->far_field().max_equivalent_plastic_strain());

@@ -248,6 +248,35 @@ TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   EXPECT_EQ(grown_zone(P, panel, zone, g)[0], 0.0);
 }
 
+// A side at its limit that the damage reaches is held there, and reported; a side on a symmetry
+// plane (which never moves) or below its limit is not, and the zone grows as before.
+TEST(ZoneGrowth, ASideAtItsLimitThatDamageReachesIsHeld) {
+  mpm::Particles P;
+  P.add_field("damage", mpm::FieldKind::scalar, "1");
+  // Reaches x1 (at its limit), y1 (below its limit) and x0 (a symmetry plane).
+  const double pts[][3] = {{11.5e-3, 2e-3, -1e-3}, {5e-3, 9.5e-3, -1e-3}, {0.5e-3, 5e-3, -1e-3}};
+  for (const auto& x : pts) P.field("damage")[P.append(x, 1e-9, 1e-6, 1, 0)] = 1.0;
+  ZoneGrowth g;
+  g.limit = {0, 0, 12e-3, 20e-3};
+  g.step = 2e-3;
+  g.margin = 1e-3;
+  g.z_lower = -2e-3;
+  g.z_upper = 0.0;
+  g.movable = {false, false, true, true};
+  const std::array<double, 4> zone{0, 0, 12e-3, 10e-3};
+  const std::vector<std::int64_t> panel{1};
+  const std::array<bool, 4> reached = sides_reached(P, panel, zone, g);
+  EXPECT_EQ(reached, (std::array<bool, 4>{true, false, true, true}));
+  EXPECT_EQ(sides_held_at_limit(reached, zone, g), (std::array<bool, 4>{false, false, true, false}));
+  EXPECT_EQ(grown_zone(reached, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
+  // Below its limit the same side grows and is not held.
+  const std::array<double, 4> smaller{0, 0, 10e-3, 10e-3};
+  P.position[0] = 9.5e-3;
+  const std::array<bool, 4> below = sides_reached(P, panel, smaller, g);
+  EXPECT_EQ(sides_held_at_limit(below, smaller, g), (std::array<bool, 4>{}));
+  EXPECT_EQ(grown_zone(below, smaller, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
+}
+
 // The ring a grown zone adds tiles it: no overlap, nothing missing, no box where a side stays.
 TEST(ZoneGrowth, TheRingsBoxesTileIt) {
   const std::array<double, 4> zone{0, 0, 3e-3, 3e-3}, grown{-1e-3, 0, 5e-3, 4e-3};

@@ -371,6 +371,7 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
     EXPECT_TRUE(read(two / "probes.csv") == read(fs::path(testing::TempDir()) / ("hvi_cli_" + std::string(other)) / "probes.csv"))
         << other;
   EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"), 1080);  // 27 columns of 40 elements
+  EXPECT_EQ(summary_number(two, "mpm_zone_limit_reached_steps"), 0);  // the damage stops short of 6 mm
   EXPECT_NE(read(two / "summary.toml").find("mpm_zone = [ 0.0, 0.0, 0.0060000000000000001, 0.0060000000000000001 ]"),
             std::string::npos);
   const auto probe = csv_rows(two / "probes.csv");  // step, time, rear_deflection every 5 steps
@@ -382,6 +383,35 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   EXPECT_LT(std::abs(across - before), 0.5 * std::abs(before)) << across << " after " << before;
   EXPECT_EQ(run("measure " + two.string()), 0);
   EXPECT_NE(read(two / "measurements.json").find("\"perforated\" : true"), std::string::npos);
+}
+
+// The same growing hybrid with its limit at 5 mm: the damage reaches the zone's edge there at
+// step 114 (x = 5 mm) and 122 (y = 5 mm), and the run says so, once per side, and counts the steps
+// it did in the summary (21 of the 134, from 3.41 us to the end). A run stopped at step 118 and
+// resumed reports the same: the record is in the checkpoint.
+TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
+  const std::string growing =
+      " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
+      " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
+      " --set body.ball.velocity=[0,0,-2000] --set 'grid.upper=[\"7 mm\",\"7 mm\",\"3 mm\"]'"
+      " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]' --set 'far_field.zone.grow.upper=[\"5 mm\",\"5 mm\"]'"
+      " --set 'far_field.zone.grow.step=1 mm' --set 'far_field.zone.grow.margin=1 mm'";
+  const fs::path whole = scratch("hybrid_limit"), parts = scratch("hybrid_limit_parts");
+  const std::string log = (fs::path(testing::TempDir()) / "hvi_cli_hybrid_limit.log").string();
+  const std::string command = hvi + " run " + hybrid + " --out " + whole.string() + " --threads 2" + growing + " > " + log + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string said = read(log);
+  EXPECT_NE(said.find("step 114, t = 3.40851e-06 s: the panel's damage reached the MPM zone's edge at x = 5 mm, its limit"),
+            std::string::npos) << said;
+  EXPECT_NE(said.find("step 122, t = 3.6559e-06 s: the panel's damage reached the MPM zone's edge at y = 5 mm, its limit"),
+            std::string::npos) << said;
+  EXPECT_EQ(summary_number(whole, "mpm_zone_limit_reached_steps"), 21);
+  EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_first_time"), 3.40851e-6, 1e-11);
+  EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_last_time"), 4e-6, 1e-15);
+  ASSERT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=118" + growing), 0);
+  ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
+  for (const char* key : {"mpm_zone_limit_reached_steps", "mpm_zone_limit_reached_first_time", "mpm_zone_limit_reached_last_time"})
+    EXPECT_EQ(summary_number(parts, key), summary_number(whole, key)) << key;
 }
 
 // A run with a kind = "holes" measure measures its last snapshot after the solver is freed: what
