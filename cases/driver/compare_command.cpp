@@ -73,6 +73,16 @@ std::string compare_runs(const CompareOptions& options) {
   row("time (s)", number(a, "time"), number(b, "time"));
   row("particles", number(a, "particles"), number(b, "particles"));
   row("far-field nodes", number(a, "far_field_nodes"), number(b, "far_field_nodes"));
+  // Rows of keys only some runs have, shown where one of the two has them.
+  auto row_if_any = [&](const std::string& name, const std::string& key, double scale = 1.0) {
+    auto x = number(a, key), y = number(b, key);
+    if (!x && !y) return;
+    if (x) *x *= scale;
+    if (y) *y *= scale;
+    row(name, x, y);
+  };
+  // A growing zone that the damage held at its limit: the far field holds damage there.
+  row_if_any("steps the damage held the MPM zone at its limit", "mpm_zone_limit_reached_steps");
   row("steps", number(a, "steps"), number(b, "steps"));
   row("threads", number(a, "threads"), number(b, "threads"));
   // A resumed run's cost is all its invocations (wall_seconds_total), where its checkpoints recorded them.
@@ -84,6 +94,7 @@ std::string compare_runs(const CompareOptions& options) {
   row("particle-steps/s", number(a, "particle_steps_per_second"), number(b, "particle_steps_per_second"));
   auto mb = [](std::optional<double> bytes) { return bytes ? std::optional<double>(*bytes / 1e6) : std::nullopt; };
   row("peak memory (MB)", mb(number(a, "peak_memory_bytes")), mb(number(b, "peak_memory_bytes")));
+  row_if_any("peak memory with the hole measurement (MB)", "peak_memory_with_measure_bytes", 1e-6);
   row("energy balance", number(a, "energy_balance"), number(b, "energy_balance"));
   return out;
 }

@@ -482,6 +482,7 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   std::ofstream(a / "summary.toml") << "status = 'finished'\nwall_seconds = 100.0\nparticles = 1000\n"
                                        "[measures]\nD_f = 10.0\nD_r = 20.0\n";
   std::ofstream(b / "summary.toml") << "status = 'finished'\nwall_seconds = 20.0\nwall_seconds_total = 30.0\nparticles = 100\nfar_field_nodes = 50\n"
+                                       "mpm_zone_limit_reached_steps = 12\npeak_memory_bytes = 4e8\npeak_memory_with_measure_bytes = 5e8\n"
                                        "[measures]\nD_f = 10.5\n";
   const fs::path table = scratch("compare_out.md");
   ASSERT_EQ(std::system((hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()), 0);
@@ -491,6 +492,9 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   // B was resumed: its cost is all its invocations (wall_seconds_total), A's its one.
   EXPECT_NE(t.find("| wall time (s) | 100 | 30 | -70.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| far-field nodes | — | 50 |  |"), std::string::npos) << t;
+  // Keys only one run has: a growing zone's limit record, the command's peak with its measurement.
+  EXPECT_NE(t.find("| steps the damage held the MPM zone at its limit | — | 12 |  |"), std::string::npos) << t;
+  EXPECT_NE(t.find("| peak memory with the hole measurement (MB) | — | 500 |  |"), std::string::npos) << t;
   EXPECT_EQ(run("compare " + a.string() + " " + (b / "missing").string()), 2);
 
   // A hole reaching its sheet's edge (a hybrid's torn zone) is a lower bound, and so is its difference.
@@ -500,6 +504,7 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   const std::string bounded = read(table);
   EXPECT_NE(bounded.find("| D_r | 20 | ≥ 19 | -5.00% (B a lower bound) |"), std::string::npos) << bounded;
   EXPECT_NE(bounded.find("| D_f | 10 | 10.5 | +5.00% |"), std::string::npos) << bounded;
+  EXPECT_EQ(bounded.find("held the MPM zone"), std::string::npos) << bounded;  // neither run has the key
 }
 
 // hvi fit A B: the rows of several tables are fitted together (the paper fits eq. 18 to the
