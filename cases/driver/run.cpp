@@ -433,6 +433,15 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
                  alpha, hybrid->far_field().finite_strain() ? "" : " (small-strain theory)",
                  hybrid->growing() ? "a larger limit of [far_field.zone.grow]" : "a larger [far_field] zone, or one that grows,");
   }
+  if (hybrid && hybrid->growing()) {
+    const auto& z = hybrid->zone();
+    const Hybrid::LimitRecord& held = hybrid->held_at_limit();
+    fmt::print("  MPM zone: [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm, {} far-field elements taken over; {}\n", 1e3 * z[0],
+               1e3 * z[2], 1e3 * z[1], 1e3 * z[3], hybrid->far_field().removed_cell_count(),
+               held.steps == 0 ? std::string("the damage never reached a side at its limit")
+                               : fmt::format("the damage held it at its limit ({}) at {} steps, from t = {:.4g} to {:.4g} s",
+                                             side_names(held.sides, z), held.steps, held.first_time, held.last_time));
+  }
   record.initial_energy = initial_energy;
   auto measured = evaluate(scene.measures, s, record);
   measured.merge(probes->values(s));

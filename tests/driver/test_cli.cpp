@@ -386,9 +386,9 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
 }
 
 // The same growing hybrid with its limit at 5 mm: the damage reaches the zone's edge there at
-// step 114 (x = 5 mm) and 122 (y = 5 mm), and the run says so, once per side, and counts the steps
-// it did in the summary (21 of the 134, from 3.41 us to the end). A run stopped at step 118 and
-// resumed reports the same: the record is in the checkpoint.
+// step 114 (x = 5 mm) and 122 (y = 5 mm), and the run says so, once per side, and counts the
+// steps it did in the summary and its closing lines (21 of the 134, from 3.41 us to the end). A
+// run stopped at step 118 and resumed reports the same: the record is in the checkpoint.
 TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   const std::string growing =
       " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
@@ -404,6 +404,9 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   EXPECT_NE(said.find("step 114, t = 3.40851e-06 s: the panel's damage reached the MPM zone's edge at x = 5 mm, its limit"),
             std::string::npos) << said;
   EXPECT_NE(said.find("step 122, t = 3.6559e-06 s: the panel's damage reached the MPM zone's edge at y = 5 mm, its limit"),
+            std::string::npos) << said;
+  EXPECT_NE(said.find("MPM zone: [0, 5] x [0, 5] mm, 640 far-field elements taken over; the damage held it at its limit "
+                      "(x = 5 mm, y = 5 mm) at 21 steps"),
             std::string::npos) << said;
   EXPECT_EQ(summary_number(whole, "mpm_zone_limit_reached_steps"), 21);
   EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_first_time"), 3.40851e-6, 1e-11);
