@@ -130,6 +130,7 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
   std::vector<double>* alpha = P.has_field("plastic_strain") ? &P.field("plastic_strain") : nullptr;
   std::vector<double>* damage = P.has_field("damage") ? &P.field("damage") : nullptr;
   std::vector<double>* failed = P.has_field("failed") ? &P.field("failed") : nullptr;
+  std::vector<double>* reference = P.has_field(reference_position_field) ? &P.field(reference_position_field) : nullptr;
   mpm::Vec3 lost{}, taken{};
   double new_mass = 0.0;
   for (int d = 0; d < 3; ++d) lost[d] = momentum_before[d] - momentum_after[d];
@@ -147,6 +148,8 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
     const bool stressed = layer.kind == LayerTakeover::Kind::solid;
     const bool torn = s.damage >= 1.0;
     double trace = 0.0;
+    if (reference)
+      for (int d = 0; d < 3; ++d) (*reference)[3 * p + d] = points.position[3 * k + d];
     for (int d = 0; d < 3; ++d) {
       P.position[3 * p + d] = points.position[3 * k + d] + s.displacement[d];
       P.velocity[3 * p + d] = s.velocity[d];

@@ -48,6 +48,12 @@
 
 namespace hvi::coupling {
 
+// With a zone that grows, every point carries its undeformed position X (3 per point, m), written
+// to the snapshots: the points of the start their position at t = 0, the points a take-over adds
+// the far field's undeformed point they take over. So position - X is the displacement of any
+// point, also of one born after the first snapshot (a probe read after the run, ParaView).
+inline constexpr const char* reference_position_field = "reference_position";
+
 struct ZoneGrowth {
   std::array<double, 4> limit{};  // the largest zone: x0, y0, x1, y1 (m, on grid planes)
   double step = 0.0;              // m, a whole number of grid cells

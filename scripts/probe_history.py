@@ -8,9 +8,15 @@ It reads the point as hvi's `kind = "displacement"` measure does (cases/driver/p
 undeformed configuration:
   - in a hybrid's far field (the point outside `[far_field.zone]` in plane): the nearest far-field
     node, u = its displacement, from RUN/far_field.pvd and its VTU files;
+  - with a zone that grows (`[far_field.zone.grow]`), from the first snapshot whose far field no
+    longer holds that node (the zone took its cells): the points of the nearest point's body
+    whose undeformed positions X (the snapshots' `reference_position`) lie within one grid cell
+    of the point, u = mean (x_p - X_p);
   - otherwise the particles of the nearest particle's body within one grid cell of the point in
     the first snapshot, followed by id: u = mean (x_p - x_p^0) over those still in the model.
-So on a run's own probe point it gives the run's probes.csv values at the snapshot times.
+So on a run's own probe point it gives the run's probes.csv values at the snapshot times (after
+a take-over to within the far field's displacement gradient over a cell: the run's probe goes on
+from its node's reading, the script from the points' own X).
 Output: CSV on standard output (time in s, the displacement component in m, one row per
 snapshot); on standard error what it read and the value of largest magnitude.
 """
@@ -110,13 +116,63 @@ def particle_history(run, point, axis, cell):
     return rows, f"{int(chosen.sum())} particles of body {int(body[nearest])} within {cell:g} m"
 
 
+def snapshot_times(run):
+    """The particle snapshots in time order, as (time, path)."""
+    snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
+    if not snapshots:
+        raise ValueError(f"{run}/snapshots: no particle snapshots")
+    times = []
+    for path in snapshots:
+        with h5py.File(path, "r") as f:
+            times.append((float(f.attrs["time"]), path))
+    return times
+
+
+def grown_zone_history(run, point, axis, cell):
+    """The far-field node's reading while the far field holds it, then the points that took it
+    over, by their undeformed positions."""
+    collection = ET.parse(run / "far_field.pvd").getroot()
+    datasets = [(float(d.get("timestep")), d.get("file")) for d in collection.iter("DataSet")]
+    snapshots = snapshot_times(run)
+    node, rows, taken, described = None, [], None, ""
+    for time, file in datasets:
+        a = vtu_arrays(run / file)
+        if node is None:
+            node = a["points"][int(np.argmin(np.linalg.norm(a["points"] - point, axis=1)))].astype(float)
+            described = f"the far-field node at {node[0]:.6g}, {node[1]:.6g}, {node[2]:.6g} m"
+        # The VTU lists each cell's nodes (in float32): the node is there while a cell of it is.
+        distance = np.linalg.norm(a["points"] - node, axis=1)
+        if taken is None and distance.min() <= 1e-3 * cell:
+            rows.append((time, float(a["displacement"][int(np.argmin(distance)), axis])))
+            continue
+        if taken is None:
+            taken = time
+        path = min(snapshots, key=lambda s: abs(s[0] - time))[1]
+        with h5py.File(path, "r") as f:
+            if "reference_position" not in f:
+                raise ValueError(f"the zone took the far-field node at {node} by t = {time:g} s, and {path.name} holds "
+                                 "no reference_position (a run made before hvi wrote it): read the run's probes.csv")
+            X, x, body = f["reference_position"][:], f["position"][:], f["body"][:]
+        r2 = np.sum((X - point) ** 2, axis=1)
+        nearest = int(np.argmin(r2))
+        chosen = (body == body[nearest]) & (r2 <= max(cell * cell, r2[nearest]))
+        rows.append((time, float(np.mean(x[chosen, axis] - X[chosen, axis]))))
+        described_points = f"{int(chosen.sum())} points of body {int(body[nearest])} within {cell:g} m by their undeformed positions"
+    if taken is not None:
+        described += f", then (from t = {taken:g} s, the zone grown over it) {described_points}"
+    return rows, described
+
+
 def history(run, point, axis):
     run = pathlib.Path(run)
     scene = tomllib.loads((run / "scene.resolved.toml").read_text())
     zone = scene.get("far_field", {}).get("zone")
+    cell = float(scene["grid"]["cell_size"])
     if zone is not None and not (zone["lower"][0] <= point[0] <= zone["upper"][0] and zone["lower"][1] <= point[1] <= zone["upper"][1]):
+        if "grow" in zone:
+            return grown_zone_history(run, point, axis, cell)
         return far_field_history(run, point, axis)
-    return particle_history(run, point, axis, float(scene["grid"]["cell_size"]))
+    return particle_history(run, point, axis, cell)
 
 
 def main(argv=None):

@@ -103,8 +103,17 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
     }
   coupling_ = std::make_unique<coupling::FarFieldCoupling>(*far_field_, grid, coupling::panel_interface_band(spec, grid),
                                                            scene.grid.flip, f.safety);
-  if (growth_) coupling_->enable_growth();
+  if (growth_) {
+    coupling_->enable_growth();
+    solver.particles().add_field(coupling::reference_position_field, mpm::FieldKind::vector, "m");
+  }
   solver.add_coupling(coupling_.get());
+}
+
+void Hybrid::record_reference_positions(mpm::Solver& solver) const {
+  if (!growth_) return;
+  mpm::Particles& P = solver.particles();
+  P.field(coupling::reference_position_field) = P.position;
 }
 
 std::string Hybrid::describe() const {

@@ -48,6 +48,9 @@ class Hybrid {
   // refinement zones), and take over the far field's cells there (coupling::take_over). Returns
   // what was taken over, or nothing when the zone stays.
   bool growing() const { return growth_.has_value(); }
+  // With a zone that grows, the points of the start take their positions as their undeformed
+  // ones (coupling::reference_position_field); call it once they are all added.
+  void record_reference_positions(mpm::Solver& solver) const;
   std::optional<coupling::TakeoverReport> grow(mpm::Solver& solver);
   // The undeformed positions of the points the last growth added (3 per point; the point k has
   // the id first_id + k of grow()'s report).

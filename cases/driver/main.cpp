@@ -51,6 +51,7 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
   const auto hybrid = hvi::driver::make_hybrid(scene, *solver);
   const auto counts = hvi::driver::add_bodies(scene, *solver);
   solver->initialise();
+  if (hybrid) hybrid->record_reference_positions(*solver);
   fmt::print("{}: valid{}\n", path, scene.title.empty() ? "" : " — " + scene.title);
   for (const auto& w : scene.warnings) fmt::print("  warning: {}\n", w);
   const auto& g = scene.grid;

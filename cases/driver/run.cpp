@@ -210,6 +210,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     } else {
       counts = add_bodies(scene, *solver);
       solver->initialise();
+      if (hybrid) hybrid->record_reference_positions(*solver);
     }
     probes = std::make_unique<Probes>(scene, *solver, hybrid.get());
     if (options.resume) probes->load(extras);

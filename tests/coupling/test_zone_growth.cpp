@@ -4,7 +4,7 @@
 //  - keeps a rigid translation rigid: every particle and node moves on at V, to round-off;
 //  - keeps a uniform strain uniform: the new points carry its stress and strain energy, so the
 //    new interface at 70 h feels no force in the next step beyond the order of the displacement
-//    over the cell size (the points sit at X + u);
+//    over the cell size (the points sit at X + u, and keep X as their reference position);
 //  - conserves momentum exactly and books the energy it does not carry over, which is zero to
 //    round-off in both cases (the points hold the cells' mass, kinetic and strain energy);
 //  - gives the points of a homogenised honeycomb core the stress of their walls, which averages
@@ -102,11 +102,18 @@ TEST(ZoneGrowth, TakeOverKeepsAUniformStrain) {
   auto& P = B.solver->particles();
   strain_uniformly(P, *B.far, eps);
   B.solver->initialise();
+  P.add_field(reference_position_field, mpm::FieldKind::vector, "m");
   const double e0 = B.solver->energy().total();
   const std::size_t n0 = P.size();
-  const TakeoverReport r = B.grow();
-  // The new points: stress M eps, lambda eps; strain energy 1/2 M eps^2 per volume, as the cells.
+  const NewPoints points = B.grown_points();
+  const TakeoverReport r = B.grow(points, grown_cells, LayerTakeover{});
+  // The new points: stress M eps, lambda eps; strain energy 1/2 M eps^2 per volume, as the cells;
+  // their undeformed positions X kept exactly, and x - X the far field's displacement eps X.
+  const auto& X = P.field(reference_position_field);
   for (std::size_t p = n0; p < P.size(); ++p) {
+    const auto k = static_cast<std::size_t>(P.id[p] - r.first_id);  // new point k has id first_id + k
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(X[3 * p + d], points.position[3 * k + d]);
+    EXPECT_NEAR(P.position[3 * p] - X[3 * p], eps * X[3 * p], 1e-12 * h);
     EXPECT_NEAR(P.stress[6 * p + mpm::sym::xx], M * eps, 1e-9 * M * eps);
     EXPECT_NEAR(P.stress[6 * p + mpm::sym::yy], lambda * eps, 1e-9 * M * eps);
     EXPECT_NEAR(P.volume[p], P.volume0[p] * (1 + eps), 1e-12 * P.volume0[p]);

@@ -1,7 +1,9 @@
 """scripts/probe_history.py on a synthetic run with known displacements: particles followed by id
 (reordered and one removed between snapshots), averaged over the nearest body's points within one
 grid cell; outside a hybrid's zone the nearest far-field node of zlib-compressed and ascii VTU
-files as deal.II writes them. Every value is exact to round-off (1e-15 m)."""
+files as deal.II writes them, and where a growing zone took the node, the points born there by
+their undeformed positions. Every value is exact to round-off (1e-15 m; 1e-12 m from float32 VTU
+values)."""
 import base64
 import contextlib
 import io
@@ -22,10 +24,12 @@ import probe_history  # noqa: E402
 CELL = 1e-3  # grid cell, m
 
 
-def write_snapshot(path, time, ids, body, position):
+def write_snapshot(path, time, ids, body, position, reference=None):
     with h5py.File(path, "w") as f:
         f.attrs["time"] = time
         f["id"], f["body"], f["position"] = ids, body, position
+        if reference is not None:
+            f["reference_position"] = reference
 
 
 def compressed(array):
@@ -90,6 +94,29 @@ def make_run(root, ascii=False):
     return run
 
 
+def make_growing_run(root, references=True):
+    """A hybrid whose zone grows over the probe's far-field node between 1 and 2 us: the node's
+    cells leave the VTU at 2 us, and points born there carry their undeformed positions."""
+    run = make_run(root)
+    (run / "scene.resolved.toml").write_text(
+        "[far_field]\n[far_field.zone]\nlower = [0.0, 0.0]\nupper = [0.01, 0.01]\n"
+        "[far_field.zone.grow]\nlower = [0.0, 0.0]\nupper = [0.03, 0.03]\n[grid]\ncell_size = 0.001\n"
+    )
+    # At 2 us the far field keeps only the node at 25 mm; the zone's new points: body 1 at
+    # X = 19.2, 19.5, 20, 21.5 mm (z = -0.3 mm) moved down by 1, 2, 3, 4 um, and body 0 at X = 20 mm,
+    # z = 0, moved up by 9 um. The probe at (20, 0, -0.2) mm is nearest to body 1's point at
+    # 20 mm: its points within a cell are the first three (21.5 mm is 1.5 mm away), mean -2 um.
+    write_vtu(run / "far_field/far_field_2.vtu", np.array([[25e-3, 0, 0]]), np.array([[0, 0, 8e-6]]))
+    pvd = (run / "far_field.pvd").read_text().replace(
+        "</Collection>", '<DataSet timestep="2e-06" file="far_field/far_field_2.vtu"/>\n</Collection>')
+    (run / "far_field.pvd").write_text(pvd)
+    X = np.array([[19.2e-3, 0, -0.3e-3], [19.5e-3, 0, -0.3e-3], [20e-3, 0, -0.3e-3], [21.5e-3, 0, -0.3e-3], [20e-3, 0, 0.0]])
+    x = X + np.array([[0, 0, -1e-6], [0, 0, -2e-6], [0, 0, -3e-6], [0, 0, -4e-6], [0, 0, 9e-6]])
+    write_snapshot(run / "snapshots/particles_000002.h5", 2e-6, np.arange(5) + 500, np.array([1, 1, 1, 1, 0]), x,
+                   X if references else None)
+    return run
+
+
 class ProbeHistory(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -114,6 +141,20 @@ class ProbeHistory(unittest.TestCase):
                 self.assertIn("far-field node at 0.0195", what)
                 self.assertAlmostEqual(rows[0][1], 0.0, delta=1e-15)
                 self.assertAlmostEqual(rows[1][1], -3e-6, delta=1e-12)  # float32 in the file
+
+    def test_growing_zone_goes_on_with_the_points_that_took_the_node(self):
+        run = make_growing_run(self.root)
+        rows, what = probe_history.history(run, np.array([20e-3, 0.0, -0.2e-3]), 2)
+        self.assertIn("far-field node at 0.0195", what)
+        self.assertIn("from t = 2e-06 s, the zone grown over it) 3 points of body 1", what)
+        self.assertEqual([t for t, _ in rows], [0.0, 1e-6, 2e-6])
+        self.assertAlmostEqual(rows[1][1], -3e-6, delta=1e-12)  # the node, float32
+        self.assertAlmostEqual(rows[2][1], -2e-6, delta=1e-15)  # the points, by their X
+
+    def test_growing_zone_without_reference_positions_is_refused(self):
+        run = make_growing_run(self.root, references=False)
+        with self.assertRaisesRegex(ValueError, "no reference_position"):
+            probe_history.history(run, np.array([20e-3, 0.0, -0.2e-3]), 2)
 
     def test_units_and_bad_point(self):
         self.assertAlmostEqual(probe_history.length("-15.2 mm"), -0.0152, delta=1e-15)
