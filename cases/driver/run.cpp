@@ -45,6 +45,36 @@ struct Schedule {
   void advance(double t) { next = (std::floor(t / interval + 1e-9) + 1.0) * interval; }
 };
 
+// A byte count as a person reads it: "1.95 GB", "340 MB", "12 kB".
+std::string format_bytes(double bytes) {
+  if (bytes >= 1e9) return fmt::format("{:.3g} GB", bytes / 1e9);
+  if (bytes >= 1e6) return fmt::format("{:.3g} MB", bytes / 1e6);
+  return fmt::format("{:.3g} kB", bytes / 1e3);
+}
+
+// What the rest of a run writes, against the space left on its output's disk: the snapshots
+// still due at the current particle count (one at every output time from `next_output` and one at
+// the end), and the checkpoint, written aside before it replaces the last one (`fresh`: none on
+// the disk yet, so twice). A warning, not an error: snapshots may be deleted as the run goes.
+void report_disk(const fs::path& dir, const mpm::Solver& s, const scene::Scene& scene, double next_output, bool fresh) {
+  const double end = scene.end_time, interval = scene.output_interval;
+  double snapshots = 1.0;  // the last step's
+  if (next_output < end * (1 - 1e-12)) snapshots += std::floor((end - next_output) / interval + 1e-9) + 1.0;
+  const double snapshot = static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) * s.particles().size());
+  const double checkpoint = static_cast<double>(mpm::io::checkpoint_bytes(s));
+  const double needed = snapshots * snapshot + (fresh ? 2.0 : 1.0) * checkpoint;
+  std::error_code error;
+  const auto space = fs::space(dir, error);
+  fmt::print("  output: {:.0f} snapshot{} of about {} and a checkpoint of {} to come, {} in all{}\n", snapshots,
+             snapshots == 1.0 ? "" : "s", format_bytes(snapshot), format_bytes(checkpoint), format_bytes(needed),
+             error ? std::string() : fmt::format("; {} free on the disk", format_bytes(static_cast<double>(space.available))));
+  if (!error && needed > static_cast<double>(space.available))
+    fmt::print("  warning: the output needs about {} and {}'s disk has {} free: the run will stop when the disk is "
+               "full (its last checkpoint kept, to resume from); free space, delete snapshots as it runs, or raise "
+               "output.interval\n",
+               format_bytes(needed), dir.string(), format_bytes(static_cast<double>(space.available)));
+}
+
 std::string format_duration(double seconds) {
   const auto s = static_cast<long>(seconds);
   return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
@@ -308,6 +338,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     if (hybrid) hybrid->save(extras);
     mpm::io::write_checkpoint(dir / "checkpoint.h5", s, extras);
   };
+  report_disk(dir, s, scene, output.next, !options.resume);
   // A checkpoint exists from the start, so a run that fails always leaves one from before.
   if (!options.resume) checkpoint(0.0);
 

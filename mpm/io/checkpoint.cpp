@@ -19,6 +19,16 @@ const std::string coupled_prefix = "coupled_";  // datasets of the couplings' st
 const std::string field_order = "field_order";   // attribute: the fields' names in declaration order
 }  // namespace
 
+std::size_t checkpoint_bytes(const Solver& solver) {
+  const Particles& P = solver.particles();
+  std::size_t values = P.int_fields().size() * P.size();
+  for (const auto& f : P.real_fields())
+    if (!f.scratch) values += static_cast<std::size_t>(components(f.kind)) * P.size();
+  for (auto* c : solver.couplings())
+    for (const auto& [name, data] : c->state()) values += data.size();
+  return 8 * values;
+}
+
 void write_checkpoint(const fs::path& path, const Solver& solver, const CheckpointExtras& extras) {
   // Written aside and renamed over the last checkpoint only once complete: a write that fails
   // (a full disk) leaves the last checkpoint to resume from (Hdf5File removes the partial one).

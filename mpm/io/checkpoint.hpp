@@ -16,6 +16,10 @@ using CheckpointExtras = std::map<std::string, double>;
 void write_checkpoint(const std::filesystem::path& path, const Solver& solver,
                       const CheckpointExtras& extras);
 
+// The bytes of the datasets write_checkpoint writes for `solver` now (8 a value: the particles'
+// non-scratch fields and the couplings' state); a file adds a few kB of HDF5 metadata.
+std::size_t checkpoint_bytes(const Solver& solver);
+
 // Loads particles and state into a solver constructed from the same scene (same materials,
 // bodies, grid) and calls Solver::restore. Returns the caller's extras.
 CheckpointExtras read_checkpoint(const std::filesystem::path& path, Solver& solver);

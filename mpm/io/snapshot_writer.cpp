@@ -43,6 +43,8 @@ std::vector<T> in_order(const std::vector<T>& field, int nc, const std::vector<s
   return out;
 }
 
+constexpr int derived_fields = 4;  // density, pressure, von Mises stress, volume ratio
+
 // Writes the snapshot datasets of `solver` to `path`; returns the attributes in order.
 std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const std::filesystem::path& path,
                                                                          const Solver& solver) {
@@ -94,6 +96,13 @@ std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const s
 }  // namespace
 
 void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) { write_datasets(path, solver); }
+
+std::size_t snapshot_bytes_per_particle(const Particles& P) {
+  std::size_t values = 3 + derived_fields + P.int_fields().size();  // position, derived, integers
+  for (const auto& f : P.real_fields())
+    if (f.output && !f.scratch) values += static_cast<std::size_t>(components(f.kind));
+  return 8 * values;
+}
 
 void SnapshotWriter::write(const Solver& solver) {
   Entry entry{file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};

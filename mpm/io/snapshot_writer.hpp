@@ -15,6 +15,10 @@ namespace hvi::mpm::io {
 // Writes one snapshot file (the datasets of a SnapshotWriter snapshot, no index).
 void write_snapshot_file(const std::filesystem::path& path, const Solver& solver);
 
+// The bytes per particle of the datasets a snapshot holds (position, the output fields, the
+// derived ones and the integer fields, 8 bytes a value); a file adds a few kB of HDF5 metadata.
+std::size_t snapshot_bytes_per_particle(const Particles& particles);
+
 class SnapshotWriter {
  public:
   explicit SnapshotWriter(std::filesystem::path run_directory);

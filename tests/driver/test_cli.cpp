@@ -417,6 +417,26 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
     EXPECT_EQ(summary_number(parts, key), summary_number(whole, key)) << key;
 }
 
+// A run says, before its time loop, what its output will take of the disk: the snapshots still due
+// and the checkpoint (twice in a fresh run: the first, and the next one written aside before it
+// replaces it), each within 1% of the files it then writes (HDF5 adds a few kB of metadata). The
+// demo on 0.8 mm cells to 1 us: one snapshot to come after the first.
+TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
+  const fs::path out = scratch("disk");
+  const std::string log = (fs::path(testing::TempDir()) / "hvi_cli_disk.log").string();
+  const std::string command = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + out.string() +
+                              " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' > " + log + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string said = read(log);
+  const std::regex line(R"(output: 1 snapshot of about ([0-9.]+) MB and a checkpoint of ([0-9.]+) MB to come, ([0-9.]+) MB in all; [0-9.]+ [kMG]B free on the disk)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(said, m, line)) << said;
+  const double snapshot = std::stod(m[1]) * 1e6, checkpoint = std::stod(m[2]) * 1e6, all = std::stod(m[3]) * 1e6;
+  EXPECT_NEAR(snapshot, static_cast<double>(fs::file_size(out / "snapshots" / "particles_000001.h5")), 0.01 * snapshot);
+  EXPECT_NEAR(checkpoint, static_cast<double>(fs::file_size(out / "checkpoint.h5")), 0.01 * checkpoint);
+  EXPECT_NEAR(all, snapshot + 2 * checkpoint, 0.01 * all);
+}
+
 // A run with a kind = "holes" measure measures its last snapshot after the solver is freed: what
 // it writes (measurements.json, the summary's hole sizes) is what hvi measure gives the run
 // directory afterwards, byte for byte, and the summary has the command's peak memory with the
