@@ -53,13 +53,14 @@ std::string format_bytes(double bytes) {
 }
 
 // What the rest of a run writes, against the space left on its output's disk: the snapshots
-// still due at the current particle count (one at every output time from `next_output` and one at
-// the end), and the checkpoint, written aside before it replaces the last one (`fresh`: none on
-// the disk yet, so twice). A warning, not an error: snapshots may be deleted as the run goes.
+// still due at the current particle count (one at each output time from `next_output` before the
+// end, and one at the end) and the checkpoint, written aside before it replaces the last one
+// (`fresh`: none on the disk yet, so twice). A warning, not an error: snapshots may be deleted as
+// the run goes.
 void report_disk(const fs::path& dir, const mpm::Solver& s, const scene::Scene& scene, double next_output, bool fresh) {
   const double end = scene.end_time, interval = scene.output_interval;
-  double snapshots = 1.0;  // the last step's
-  if (next_output < end * (1 - 1e-12)) snapshots += std::floor((end - next_output) / interval + 1e-9) + 1.0;
+  double snapshots = 1.0;  // the last step's, and one at each output time before the end
+  if (next_output < end * (1 - 1e-12)) snapshots += std::ceil((end - next_output) / interval - 1e-9);
   const double snapshot = static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) * s.particles().size());
   const double checkpoint = static_cast<double>(mpm::io::checkpoint_bytes(s));
   const double needed = snapshots * snapshot + (fresh ? 2.0 : 1.0) * checkpoint;
