@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -420,7 +421,8 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
 // A run says, before its time loop, what its output will take of the disk: the snapshots still due
 // and the checkpoint (twice in a fresh run: the first, and the next one written aside before it
 // replaces it), each within 1% of the files it then writes (HDF5 adds a few kB of metadata). The
-// demo on 0.8 mm cells to 1 us: one snapshot to come after the first.
+// demo on 0.8 mm cells to 1 us: one snapshot to come after the first; three with snapshots every
+// 0.4 us.
 TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
   const fs::path out = scratch("disk");
   const std::string log = (fs::path(testing::TempDir()) / "hvi_cli_disk.log").string();
@@ -435,6 +437,15 @@ TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
   EXPECT_NEAR(snapshot, static_cast<double>(fs::file_size(out / "snapshots" / "particles_000001.h5")), 0.01 * snapshot);
   EXPECT_NEAR(checkpoint, static_cast<double>(fs::file_size(out / "checkpoint.h5")), 0.01 * checkpoint);
   EXPECT_NEAR(all, snapshot + 2 * checkpoint, 0.01 * all);
+  // Every 0.4 us: 0.4 and 0.8 us, then the end, 3 to come, and so many written.
+  const fs::path often = scratch("disk_often");
+  const std::string again = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + often.string() +
+                            " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' > " +
+                            log + " 2>&1";
+  ASSERT_EQ(std::system(again.c_str()), 0);
+  EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos) << read(log);
+  const auto files = std::distance(fs::directory_iterator(often / "snapshots"), fs::directory_iterator());
+  EXPECT_EQ(files, 4);
 }
 
 // A run with a kind = "holes" measure measures its last snapshot after the solver is freed: what
