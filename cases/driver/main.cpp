@@ -82,6 +82,10 @@ int check(const std::string& path, const std::vector<std::string>& overrides) {
   const double dt = solver->next_time_step();
   fmt::print("  {} particles, {:.6g} kg; first time step {:.4g} s, about {:.0f} steps to t = {:.4g} s\n",
              solver->particles().size(), mass, dt, scene.end_time / dt, scene.end_time);
+  const auto o = hvi::driver::output_size(*solver, scene, 0.0, true);
+  fmt::print("  output: {:.0f} snapshots of about {} and a checkpoint of {}, {} in all (at this particle count)\n",
+             o.snapshots, hvi::driver::format_bytes(o.snapshot), hvi::driver::format_bytes(o.checkpoint),
+             hvi::driver::format_bytes(o.total));
   return ExitCode::success;
 }
 

@@ -45,35 +45,20 @@ struct Schedule {
   void advance(double t) { next = (std::floor(t / interval + 1e-9) + 1.0) * interval; }
 };
 
-// A byte count as a person reads it: "1.95 GB", "340 MB", "12 kB".
-std::string format_bytes(double bytes) {
-  if (bytes >= 1e9) return fmt::format("{:.3g} GB", bytes / 1e9);
-  if (bytes >= 1e6) return fmt::format("{:.3g} MB", bytes / 1e6);
-  return fmt::format("{:.3g} kB", bytes / 1e3);
-}
-
-// What the rest of a run writes, against the space left on its output's disk: the snapshots
-// still due at the current particle count (one at each output time from `next_output` before the
-// end, and one at the end) and the checkpoint, written aside before it replaces the last one
-// (`fresh`: none on the disk yet, so twice). A warning, not an error: snapshots may be deleted as
-// the run goes.
+// What the rest of a run writes (output_size), against the space left on its output's disk. A
+// warning, not an error: snapshots may be deleted as the run goes.
 void report_disk(const fs::path& dir, const mpm::Solver& s, const scene::Scene& scene, double next_output, bool fresh) {
-  const double end = scene.end_time, interval = scene.output_interval;
-  double snapshots = 1.0;  // the last step's, and one at each output time before the end
-  if (next_output < end * (1 - 1e-12)) snapshots += std::ceil((end - next_output) / interval - 1e-9);
-  const double snapshot = static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) * s.particles().size());
-  const double checkpoint = static_cast<double>(mpm::io::checkpoint_bytes(s));
-  const double needed = snapshots * snapshot + (fresh ? 2.0 : 1.0) * checkpoint;
+  const OutputSize o = output_size(s, scene, next_output, fresh);
   std::error_code error;
   const auto space = fs::space(dir, error);
-  fmt::print("  output: {:.0f} snapshot{} of about {} and a checkpoint of {} to come, {} in all{}\n", snapshots,
-             snapshots == 1.0 ? "" : "s", format_bytes(snapshot), format_bytes(checkpoint), format_bytes(needed),
+  fmt::print("  output: {:.0f} snapshot{} of about {} and a checkpoint of {} to come, {} in all{}\n", o.snapshots,
+             o.snapshots == 1.0 ? "" : "s", format_bytes(o.snapshot), format_bytes(o.checkpoint), format_bytes(o.total),
              error ? std::string() : fmt::format("; {} free on the disk", format_bytes(static_cast<double>(space.available))));
-  if (!error && needed > static_cast<double>(space.available))
+  if (!error && o.total > static_cast<double>(space.available))
     fmt::print("  warning: the output needs about {} and {}'s disk has {} free: the run will stop when the disk is "
                "full (its last checkpoint kept, to resume from); free space, delete snapshots as it runs, or raise "
                "output.interval\n",
-               format_bytes(needed), dir.string(), format_bytes(static_cast<double>(space.available)));
+               format_bytes(o.total), dir.string(), format_bytes(static_cast<double>(space.available)));
 }
 
 std::string format_duration(double seconds) {
@@ -206,6 +191,23 @@ void write_timing(const fs::path& dir, const mpm::PhaseTimer& timer) {
 }
 
 }  // namespace
+
+std::string format_bytes(double bytes) {
+  if (bytes >= 1e9) return fmt::format("{:.3g} GB", bytes / 1e9);
+  if (bytes >= 1e6) return fmt::format("{:.3g} MB", bytes / 1e6);
+  return fmt::format("{:.3g} kB", bytes / 1e3);
+}
+
+OutputSize output_size(const mpm::Solver& s, const scene::Scene& scene, double next_output, bool fresh) {
+  OutputSize o;
+  const double end = scene.end_time;
+  o.snapshots = 1.0;  // the last step's
+  if (next_output < end * (1 - 1e-12)) o.snapshots += std::ceil((end - next_output) / scene.output_interval - 1e-9);
+  o.snapshot = static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) * s.particles().size());
+  o.checkpoint = static_cast<double>(mpm::io::checkpoint_bytes(s));
+  o.total = o.snapshots * o.snapshot + (fresh ? 2.0 : 1.0) * o.checkpoint;
+  return o;
+}
 
 std::size_t peak_memory_bytes() {
   std::ifstream status("/proc/self/status");

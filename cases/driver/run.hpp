@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cases/driver/scene.hpp"
+#include "mpm/solver.hpp"
 
 namespace hvi::driver {
 
@@ -26,5 +27,16 @@ int run_scene(const scene::Scene& scene, const RunOptions& options);
 
 // Peak resident memory of this process, bytes (VmHWM), or 0 if unknown.
 std::size_t peak_memory_bytes();
+
+// What the rest of a run writes at the solver's current particle count: the snapshots still due
+// (one at each output time from `next_output` before the end, and one at the end) and the
+// checkpoint, written aside before it replaces the last one (`fresh`: none on the disk yet, so
+// twice). Bytes.
+struct OutputSize {
+  double snapshots = 0, snapshot = 0, checkpoint = 0, total = 0;
+};
+OutputSize output_size(const mpm::Solver& solver, const scene::Scene& scene, double next_output, bool fresh);
+// "1.95 GB", "340 MB", "12 kB".
+std::string format_bytes(double bytes);
 
 }  // namespace hvi::driver

@@ -422,7 +422,7 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
 // and the checkpoint (twice in a fresh run: the first, and the next one written aside before it
 // replaces it), each within 1% of the files it then writes (HDF5 adds a few kB of metadata). The
 // demo on 0.8 mm cells to 1 us: one snapshot to come after the first; three with snapshots every
-// 0.4 us.
+// 0.4 us. hvi check announces the whole run's, four snapshots.
 TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
   const fs::path out = scratch("disk");
   const std::string log = (fs::path(testing::TempDir()) / "hvi_cli_disk.log").string();
@@ -446,6 +446,16 @@ TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
   EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos) << read(log);
   const auto files = std::distance(fs::directory_iterator(often / "snapshots"), fs::directory_iterator());
   EXPECT_EQ(files, 4);
+  // hvi check gives the whole run's: the 4 snapshots and the checkpoint twice.
+  const std::string check = hvi + " check " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --set 'run.end_time=1 us'" +
+                            " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' > " + log + " 2>&1";
+  ASSERT_EQ(std::system(check.c_str()), 0);
+  const std::string checked = read(log);
+  const std::regex whole(R"(output: 4 snapshots of about ([0-9.]+) MB and a checkpoint of ([0-9.]+) MB, ([0-9.]+) MB in all)");
+  ASSERT_TRUE(std::regex_search(checked, m, whole)) << checked;
+  EXPECT_EQ(std::stod(m[1]) * 1e6, snapshot);
+  EXPECT_EQ(std::stod(m[2]) * 1e6, checkpoint);
+  EXPECT_NEAR(std::stod(m[3]) * 1e6, 4 * snapshot + 2 * checkpoint, 0.01 * all);
 }
 
 // A run with a kind = "holes" measure measures its last snapshot after the solver is freed: what
