@@ -6,11 +6,11 @@ sweep) and each run's snapshots and measurements.
 
 Figures: top views of both facesheets of each run (intact material; paper Fig. 13), the core's
 damage seen from the side (Fig. 11), D_f and D_r against impact energy (Fig. 15), the channel
-taper against impact energy (Fig. 16), and D_r against time for runs with a hole history (hvi
-measure RUN --snapshot all). Tables: every run; against Table 2 (Turner's experiments and the
+taper against impact energy (Fig. 16), and D_f and D_r against time for runs with a hole history
+(hvi measure RUN --snapshot all). Tables: every run; against Table 2 (Turner's experiments and the
 paper's MPM) for runs named case1..case7; against Table 5 (the paper's D_f) for runs named
-m<mass>g_v<speed>; whether each hole history has settled. REF_DIR holds turner_validation.csv and front_holes.csv
-(cases/paper/reference).
+m<mass>g_v<speed>, marking front holes still growing; whether each hole history has settled.
+REF_DIR holds turner_validation.csv and front_holes.csv (cases/paper/reference).
 """
 import argparse
 import csv
@@ -265,7 +265,7 @@ def table5(runs, ref_dir):
         m = re.fullmatch(r"m(\d+)g_v(\d+)(?:_(\w+))?", r["run"])
         if m and number(r.get("D_f")) is not None:
             found = variants.setdefault(m.group(3) or "", {})
-            found[(int(m.group(1)), int(m.group(2)))] = number(r["D_f"]) / MM
+            found[(int(m.group(1)), int(m.group(2)))] = (number(r["D_f"]) / MM, growing_front_hole(r))
     if not variants:
         return None
     ref = csv_rows(ref_dir / "front_holes.csv")
@@ -278,29 +278,34 @@ def table5(runs, ref_dir):
 
 
 def table5_variant(found, ref):
-    """One Table 5 comparison: found[(mass in g, speed in m/s)] = D_f in mm."""
+    """One Table 5 comparison: found[(mass in g, speed in m/s)] = (D_f in mm, whether it still grows)."""
     speeds = [int(k[1:]) for k in ref[0] if k.startswith("v")]
     lines = ["| m_p (g) | " + " | ".join(f"{v} m/s: paper / hvi" for v in speeds) + " |",
              "|---|" + "---|" * len(speeds)]
-    within, count, errs = 0, 0, []
+    within, count, errs, growing = 0, 0, [], 0
     for row in ref:
         mass = int(row["m_p_g"])
         cells = [str(mass)]
         for v in speeds:
             paper = float(row[f"v{v}"])
-            hvi = found.get((mass, v))
-            if hvi is None:
+            if (mass, v) not in found:
                 cells.append(f"{paper:.2f} / —")
                 continue
+            hvi, grows = found[(mass, v)]
+            growing += grows
             err = hvi / paper - 1
             errs.append(err)
             count += 1
             within += abs(err) <= 0.05
-            cells.append(f"{paper:.2f} / {hvi:.2f} ({100 * err:+.0f}%)")
+            cells.append(f"{paper:.2f} / {hvi:.2f} ({100 * err:+.0f}%{', growing' if grows else ''})")
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("")
     lines.append(f"D_f within 5% of the paper's: **{within} of {count}** runs; mean error {100 * np.mean(errs):+.1f}%, "
                  f"mean |error| {100 * np.mean(np.abs(errs)):.1f}%.")
+    if growing:
+        lines.append(f"{growing} of these front holes {'still grows' if growing == 1 else 'still grow'} at the end of "
+                     f"{'its' if growing == 1 else 'their'} run (more than "
+                     f"{100 * SETTLED:.0f}% over its last fifth; Hole histories below).")
     return "\n".join(lines)
 
 
@@ -348,7 +353,8 @@ def energy_figures(runs, figures):
     return made
 
 
-SETTLED = 0.02  # largest |change| of D_r over the last fifth of a run for its hole to count as final
+SETTLED = 0.02  # largest |change| of a hole's diameter over the last fifth of a run for it to count as final
+FRONT, REAR = 1, 2  # columns of a hole history
 
 
 def hole_history(run_dir):
@@ -360,42 +366,58 @@ def hole_history(run_dir):
     return sorted((t, f, r) for t, f, r in rows if t is not None)
 
 
+def settling(h, column):
+    """Whether one hole of a history has settled: its diameter at the end against the diameter at
+    80% of the end time (the last snapshot at or before it). Returns (opened at, D there, D at the
+    end, change, verdict, settled) with None where the sheet was not perforated."""
+    t_end = h[-1][0]
+    opened = next((row[0] for row in h if row[column] is not None), None)
+    before = [row[column] for row in h if row[0] <= 0.8 * t_end + 1e-15]
+    early, late = before[-1] if before else None, h[-1][column]
+    if late is None:
+        return opened, early, late, None, "NP at the end", False
+    if early is None:
+        return opened, early, late, None, f"no (> {100 * SETTLED:.0f}%)", False
+    c = late / early - 1
+    return opened, early, late, c, "yes" if abs(c) <= SETTLED else f"no (> {100 * SETTLED:.0f}%)", abs(c) <= SETTLED
+
+
+def growing_front_hole(run):
+    """True when the run has a hole history whose front hole has not settled by its end."""
+    h = hole_history(run["dir"])
+    return bool(h) and h[-1][FRONT] is not None and not settling(h, FRONT)[5]
+
+
 def history_section(runs, figures):
-    """The rear hole against time for every run with a history, and whether it has settled: D_r at
-    the end against D_r at 80% of the end time (the last snapshot at or before it)."""
+    """Each hole against time for every run with a history, and whether it has settled: its
+    diameter at the end against the diameter at 80% of the end time."""
     histories = [(r["run"], h) for r in runs if (h := hole_history(r["dir"]))]
     if not histories:
         return None
-    lines = ["| run | rear opens at (us) | D_r at 0.8 t_end (mm) | D_r at t_end (mm) | change | settled |",
-             "|---|---|---|---|---|---|"]
-    fig, ax = plt.subplots(figsize=(6.5, 4))
-    for name, h in histories:
-        t_end = h[-1][0]
-        opened = next((t for t, _, d in h if d is not None), None)
-        before = [d for t, _, d in h if t <= 0.8 * t_end + 1e-15]
-        early, late = before[-1] if before else None, h[-1][2]
-        if late is None:
-            change, settled = "—", "NP at the end"
-        elif early is None:
-            change, settled = "opened late", f"no (> {100 * SETTLED:.0f}%)"
-        else:
-            c = late / early - 1
-            change, settled = f"{100 * c:+.1f}%", "yes" if abs(c) <= SETTLED else f"no (> {100 * SETTLED:.0f}%)"
-        lines.append(f"| {name} | {'NP' if opened is None else f'{opened / 1e-6:.1f}'} | {fmt_mm(early)} | "
-                     f"{fmt_mm(late)} | {change} | {settled} |")
-        pts = [(t, d) for t, _, d in h if d is not None]
-        if pts:
-            ax.plot([t / 1e-6 for t, _ in pts], [d / MM for _, d in pts], "o-", ms=3, label=name)
-    ax.set_xlabel("t (us)")
-    ax.set_ylabel("D_r (mm)")
-    ax.grid(True, alpha=0.3)
-    if ax.lines:
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(figures / "rear_hole_history.png", dpi=90)
-    plt.close(fig)
-    lines += ["", f"A hole counts as settled when D_r changed by at most {100 * SETTLED:.0f}% over the last fifth "
-              "of the run.", "", "![rear hole against time](report/rear_hole_history.png)"]
+    lines = []
+    for column, sheet, symbol in ((FRONT, "front", "D_f"), (REAR, "rear", "D_r")):
+        lines += [f"| run | {sheet} opens at (us) | {symbol} at 0.8 t_end (mm) | {symbol} at t_end (mm) | change | settled |",
+                  "|---|---|---|---|---|---|"]
+        fig, ax = plt.subplots(figsize=(6.5, 4))
+        for name, h in histories:
+            opened, early, late, c, verdict, _ = settling(h, column)
+            change = "—" if late is None else "opened late" if early is None else f"{100 * c:+.1f}%"
+            lines.append(f"| {name} | {'NP' if opened is None else f'{opened / 1e-6:.1f}'} | {fmt_mm(early)} | "
+                         f"{fmt_mm(late)} | {change} | {verdict} |")
+            pts = [(row[0], row[column]) for row in h if row[column] is not None]
+            if pts:
+                ax.plot([t / 1e-6 for t, _ in pts], [d / MM for _, d in pts], "o-", ms=3, label=name)
+        ax.set_xlabel("t (us)")
+        ax.set_ylabel(f"{symbol} (mm)")
+        ax.grid(True, alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(figures / f"{sheet}_hole_history.png", dpi=90)
+        plt.close(fig)
+        lines += ["", f"![{sheet} hole against time](report/{sheet}_hole_history.png)", ""]
+    lines += [f"A hole counts as settled when its diameter changed by at most {100 * SETTLED:.0f}% over the last "
+              "fifth of the run."]
     return "\n".join(lines)
 
 

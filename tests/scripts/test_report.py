@@ -67,10 +67,13 @@ class Table5(unittest.TestCase):
 
 
 class HoleHistory(unittest.TestCase):
-    def write(self, root, name, rows):
+    def write(self, root, name, rows, front=None):
+        """rows: (t in us, D_r in mm or None); front: D_f in mm per row (4 mm throughout if None)."""
         d = pathlib.Path(root) / name
         d.mkdir()
-        lines = ["run,time,D_f,D_r"] + [f"{name},{t * 1e-6},{0.004},{'' if r is None else r * 1e-3}" for t, r in rows]
+        front = front or [4.0] * len(rows)
+        lines = ["run,time,D_f,D_r"] + [f"{name},{t * 1e-6},{'' if f is None else f * 1e-3},{'' if r is None else r * 1e-3}"
+                                        for (t, r), f in zip(rows, front)]
         (d / "measurements_history.csv").write_text("\n".join(lines) + "\n")
         return {"run": name, "dir": d}
 
@@ -86,11 +89,39 @@ class HoleHistory(unittest.TestCase):
                     {"run": "none", "dir": pathlib.Path(root) / "missing"}]
             text = report.history_section(runs, pathlib.Path(root))
             self.assertTrue((pathlib.Path(root) / "rear_hole_history.png").exists())
+            self.assertTrue((pathlib.Path(root) / "front_hole_history.png").exists())
+        front, rear = text.split("| run | rear opens at (us)")
+        self.assertIn("| settled | 0.0 | 4.00 | 4.00 | +0.0% | yes |", front)
+        text = rear
         self.assertIn("| settled | 4.0 | 5.00 | 5.05 | +1.0% | yes |", text)
         self.assertIn("| growing | 6.0 | 2.00 | 2.50 | +25.0% | no (> 2%) |", text)
         self.assertIn("| late | 10.0 | — | 1.50 | opened late | no (> 2%) |", text)
         self.assertIn("| np | NP | — | — | — | NP at the end |", text)
         self.assertNotIn("| none |", text)
+
+    def test_front_hole_growing(self):
+        # D_f 10.0 mm at 4 us (0.8 of 5 us), 10.3 at 5 us: +3.0%, beyond 2%; the front sheet opens at 1 us.
+        with tempfile.TemporaryDirectory() as root:
+            runs = [self.write(root, "m1g_v1300", [(0, None), (1, None), (4, None), (5, None)],
+                               front=[None, 6.0, 10.0, 10.3])]
+            text = report.history_section(runs, pathlib.Path(root))
+            front = text.split("| run | rear opens at (us)")[0]
+            self.assertIn("| m1g_v1300 | 1.0 | 10.00 | 10.30 | +3.0% | no (> 2%) |", front)
+            self.assertTrue(report.growing_front_hole(runs[0]))
+            runs[0]["D_f"] = str(10.3e-3)
+            table = report.table5(runs, REFERENCE)
+        # Table 5's 1 g shot at 1300 m/s: 9.27 mm.
+        self.assertIn("9.27 / 10.30 (+11%, growing)", table)
+        self.assertIn("1 of these front holes still grows at the end of its run", table)
+
+    def test_settled_front_hole_is_not_marked(self):
+        with tempfile.TemporaryDirectory() as root:
+            run_ = self.write(root, "m1g_v1300", [(0, None), (4, None), (5, None)], front=[None, 9.5, 9.6])
+            self.assertFalse(report.growing_front_hole(run_))
+            run_["D_f"] = str(9.6e-3)
+            table = report.table5([run_], REFERENCE)
+        self.assertIn("9.27 / 9.60 (+4%) |", table)
+        self.assertNotIn("growing", table)
 
     def test_no_histories_no_section(self):
         self.assertIsNone(report.history_section([run("case1")], pathlib.Path("/nonexistent")))
