@@ -6,7 +6,11 @@ snapshot time.
   failure_history.py RUN --body NAME [--by radius|layer|height] [--bin "0.5 mm"] [--radius "4 mm"]
                          [--axis "X,Y"] [--quantity failed|outward|velocity_z|volume_ratio|pressure|principal]
 
-Each of the body's points is followed by id from the first snapshot and put in a group:
+Each of the body's points is followed by id from the first snapshot and put in a group. In a
+growing hybrid (snapshots with `reference_position`) the body gains points as the zone takes the
+far field over: every point any snapshot holds is followed, grouped by its undeformed position X,
+and counts from the first snapshot that holds it (before, it was far field: not failed, not in a
+median). The groups:
   --by radius (default): by its distance from the impact axis (parallel to z through --axis,
     default "0 mm,0 mm") in bins of --bin, out to --radius (default 8 bins);
   --by layer: by the z it started at (one column per point layer of a facesheet, top first),
@@ -85,22 +89,40 @@ def field(f, now, quantity, axis):
     return f[quantity][:][now]
 
 
+def undeformed_positions(snapshots, b):
+    """The ids (sorted) of body b's points and where each started. Without `reference_position`,
+    the first snapshot's points at their positions there; with it (a growing hybrid), every point
+    of every snapshot at its X."""
+    with h5py.File(snapshots[0], "r") as f:
+        if "reference_position" not in f:
+            mine = f["body"][:] == b
+            ids, x0 = f["id"][:][mine], f["position"][:][mine]
+            order = np.argsort(ids)
+            return ids[order], x0[order]
+    ids, x0 = [], []
+    for path in snapshots:
+        with h5py.File(path, "r") as f:
+            mine = f["body"][:] == b
+            ids.append(f["id"][:][mine])
+            x0.append(f["reference_position"][:][mine])
+    ids, x0 = np.concatenate(ids), np.concatenate(x0)
+    ids, first = np.unique(ids, return_index=True)  # sorted, each point once
+    return ids, x0[first]
+
+
 def history(run, body, by, axis, width, radius, quantity="failed"):
     run = pathlib.Path(run)
     snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
     if not snapshots:
         raise ValueError(f"{run}/snapshots: no particle snapshots")
     b = body_index(run, body)
-    with h5py.File(snapshots[0], "r") as f:
-        mine = f["body"][:] == b
-        ids, x0 = f["id"][:][mine], f["position"][:][mine]
+    ids, x0 = undeformed_positions(snapshots, b)
     if ids.size == 0:
         raise ValueError(f"{snapshots[0]}: body '{body}' has no points")
     index, names = groups(x0, by, axis, width, radius)
-    order = np.argsort(ids)
-    ids, index, x0 = ids[order], index[order], x0[order]
     r0 = np.hypot(x0[:, 0] - axis[0], x0[:, 1] - axis[1])
     counts = np.bincount(index[index >= 0], minlength=len(names))
+    born = np.zeros(ids.size, dtype=bool)  # held by this or an earlier snapshot
     rows = []
     for path in snapshots:
         with h5py.File(path, "r") as f:
@@ -108,15 +130,18 @@ def history(run, body, by, axis, width, radius, quantity="failed"):
             now = f["body"][:] == b
             now_ids, failed = f["id"][:][now], f["failed"][:][now] > 0
             values = None if quantity == "failed" else field(f, now, quantity, axis)[~failed]
-        # Intact points still in the model; every other point of the body counts as failed.
+        held = np.minimum(np.searchsorted(ids, now_ids), ids.size - 1)
+        born[held[ids[held] == now_ids]] = True
+        # Intact points still in the model; every other point of the body born so far counts as failed.
         intact_ids = now_ids[~failed]
         where = np.minimum(np.searchsorted(ids, intact_ids), ids.size - 1)
         if np.any(ids[where] != intact_ids):
-            raise ValueError(f"{path}: body '{body}' has points the first snapshot does not")
+            raise ValueError(f"{path}: body '{body}' has points the first snapshot does not "
+                             "(a growing zone's run made before its snapshots carried reference_position)")
         if quantity == "failed":
             intact = np.zeros(ids.size, dtype=bool)
             intact[where] = True
-            lost = (~intact) & (index >= 0)
+            lost = born & (~intact) & (index >= 0)
             rows.append((time, np.bincount(index[lost], minlength=len(names)) / np.maximum(counts, 1)))
             continue
         if quantity == "outward":

@@ -17,7 +17,7 @@ sys.path.insert(0, str(ROOT / "scripts"))
 import failure_history  # noqa: E402
 
 
-def write_snapshot(path, time, ids, body, position, failed):
+def write_snapshot(path, time, ids, body, position, failed, reference=None):
     """Besides the given fields, each point's state is set by its id: velocity_z = -id m/s,
     volume_ratio = 1 + id / 1000, pressure = id MPa, and a stress of that pressure plus an xy shear
     of 2 MPa, so its largest principal stress is (2 - id) MPa."""
@@ -31,6 +31,8 @@ def write_snapshot(path, time, ids, body, position, failed):
         stress[:, 0] = stress[:, 3] = stress[:, 5] = -ids * 1e6
         stress[:, 1] = 2e6
         f["stress"] = stress
+        if reference is not None:
+            f["reference_position"] = reference
 
 
 def make_run(root):
@@ -134,6 +136,47 @@ class FailureHistory(unittest.TestCase):
         code, _, err = run_script(self.run_dir, "--body", "sheet", "--bin", "0.5 furlongs")
         self.assertEqual(code, 2)
         self.assertIn("is not a length", err)
+
+
+def make_growing_run(root):
+    """A growing zone's run: snapshots carry reference_position. At 0 us the sheet holds ids 10, 11
+    (X at x = 0.25 and 1.25 mm). At 1 us a take-over adds ids 20, 21 (X at x = 0.75 and 1.75 mm),
+    and id 10, failed, has flown out to x = 1.8 mm (still grouped by its X, 0.25 mm). At 2 us id
+    21 has failed too and id 11 has left the model."""
+    run = root / "growing"
+    (run / "snapshots").mkdir(parents=True)
+    (run / "run.json").write_text(json.dumps({"bodies": ["sheet"]}))
+    X = {10: 0.25e-3, 11: 1.25e-3, 20: 0.75e-3, 21: 1.75e-3}
+
+    def snapshot(k, time, ids, failed, moved=None):
+        ids = np.array(ids)
+        reference = np.array([[X[i], 0.0, 0.0] for i in ids])
+        position = reference.copy()
+        for i, x in (moved or {}).items():
+            position[list(ids).index(i), 0] = x
+        write_snapshot(run / f"snapshots/particles_{k:06d}.h5", time, ids, np.zeros(ids.size, dtype=int), position,
+                       np.array(failed, dtype=float), reference)
+    snapshot(0, 0.0, [10, 11], [0, 0])
+    snapshot(1, 1e-6, [21, 10, 11, 20], [0, 1, 0, 0], {10: 1.8e-3})
+    snapshot(2, 2e-6, [10, 20, 21], [1, 0, 1], {10: 1.9e-3})
+    return run
+
+
+class GrowingZone(unittest.TestCase):
+    def test_points_born_later_are_grouped_by_where_they_started(self):
+        with tempfile.TemporaryDirectory() as root:
+            run = str(make_growing_run(pathlib.Path(root)))
+            code, lines, err = run_script(run, "--body", "sheet", "--bin", "0.5 mm", "--radius", "2 mm")
+            self.assertEqual(code, 0, err)
+            # One point per bin, each counted from the snapshot that first holds it.
+            self.assertIn("r_0_0.5_mm 1, r_0.5_1_mm 1, r_1_1.5_mm 1, r_1.5_2_mm 1", err)
+            self.assertEqual(lines[1], "0,0.0000,0.0000,0.0000,0.0000")
+            self.assertEqual(lines[2], "1e-06,1.0000,0.0000,0.0000,0.0000")  # the fragment, by its X
+            self.assertEqual(lines[3], "2e-06,1.0000,0.0000,1.0000,1.0000")  # id 11 gone, id 21 failed
+            code, lines, err = run_script(run, "--body", "sheet", "--bin", "0.5 mm", "--radius", "2 mm",
+                                          "--quantity", "outward")
+            self.assertEqual(code, 0, err)
+            self.assertEqual(lines[2], "1e-06,nan,0,0,0")  # outward from X: the intact points have not moved
 
 
 if __name__ == "__main__":
