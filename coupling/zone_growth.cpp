@@ -15,10 +15,14 @@ std::array<bool, 4> sides_reached(const mpm::Particles& P, std::span<const std::
   const std::vector<double>* damage = P.has_field("damage") ? &P.field("damage") : nullptr;
   const std::vector<double>* failed = P.has_field("failed") ? &P.field("failed") : nullptr;
   if (!damage && !failed) return reached;
+  // Where the material started, when the points carry it (a growing zone's do): a fragment
+  // torn off near the axis that flies out along the panel is not damage at the side it reaches.
+  const std::vector<double>& start =
+      P.has_field(reference_position_field) ? P.field(reference_position_field) : P.position;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const bool damaged = (damage && (*damage)[p] >= growth.damage) || (failed && (*failed)[p] > 0.0);
     if (!damaged || std::find(bodies.begin(), bodies.end(), P.body[p]) == bodies.end()) continue;
-    const double x = P.position[3 * p], y = P.position[3 * p + 1], z = P.position[3 * p + 2];
+    const double x = start[3 * p], y = start[3 * p + 1], z = P.position[3 * p + 2];
     // Within the margin of a side, in plane, and not beyond the zone across it; in the panel
     // (debris flying out of it is not the panel's damage).
     if (x < zone[0] - growth.margin || x > zone[2] + growth.margin || y < zone[1] - growth.margin ||

@@ -233,9 +233,10 @@ TableSpec far_field_table() {
                  .required = true};
   TableSpec grow{.name = "grow",
                  .doc = "A zone that grows over the far field, as hydrocodes turn failing elements into "
-                        "particles: a side moves out by `step` when a panel point within `margin` of it, and "
-                        "within `margin` of the panel's thickness (not its debris or ejecta), has "
-                        "Johnson-Cook damage >= `damage` (or has failed), up to the limit box. The far-field "
+                        "particles: a side moves out by `step` when a panel point that started within `margin` of "
+                        "it, and is within `margin` of the panel's thickness (not its debris or ejecta, nor "
+                        "fragments flown out from nearer the axis), has Johnson-Cook damage >= `damage` (or "
+                        "has failed), up to the limit box. The far-field "
                         "cells it takes are sampled into points that start from the far field's displacement, "
                         "velocity, the facesheets' stress and plastic state and the core walls' stress. "
                         "Absent: the zone stays"};

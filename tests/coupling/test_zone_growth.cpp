@@ -10,7 +10,8 @@
 //  - gives the points of a homogenised honeycomb core the stress of their walls, which averages
 //    to the core's (to Voigt's versus Kelsey's bound, t/(2D));
 // and grown_zone moves only the sides that damaged points of the panel reach, by its step, up to
-// the limit (the panel's debris and ejecta, off its thickness, do not count).
+// the limit (the panel's debris and ejecta, off its thickness, do not count, nor, by where they
+// started, its fragments flown out along it).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -253,6 +254,40 @@ TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   EXPECT_EQ(grown_zone(P, std::vector<std::int64_t>{2}, zone, g), zone);
   // The interior point reaches x0 and y0, which lie on symmetry planes and stay.
   EXPECT_EQ(grown_zone(P, panel, zone, g)[0], 0.0);
+}
+
+// With undeformed positions (a growing zone's points carry them) a damaged point counts where it
+// started: a fragment torn off near the axis that flew out along the panel's rear face, within
+// the z window, reaches no side; the panel's own material failed at a side does.
+TEST(ZoneGrowth, AFragmentFlownOutFromTheAxisMovesNoSide) {
+  mpm::Particles P;
+  P.add_field("damage", mpm::FieldKind::scalar, "1");
+  P.add_field(reference_position_field, mpm::FieldKind::vector, "m");
+  // A core fragment from 2.1 mm off the axis, now at x1's edge 0.5 mm below the rear face; a point
+  // of the panel that started at y1's edge and failed there, moved 0.3 mm outward.
+  const double now[][3] = {{9.5e-3, 2e-3, -2.5e-3}, {4e-3, 10.2e-3, -1e-3}};
+  const double start[][3] = {{1.5e-3, 1.5e-3, -1e-3}, {4e-3, 9.9e-3, -1e-3}};
+  for (int k = 0; k < 2; ++k) {
+    const std::size_t p = P.append(now[k], 1e-9, 1e-6, 1, 0);
+    P.field("damage")[p] = 1.0;
+    for (int d = 0; d < 3; ++d) P.field(reference_position_field)[3 * p + d] = start[k][d];
+  }
+  ZoneGrowth g;
+  g.limit = {0, 0, 20e-3, 20e-3};
+  g.step = 2e-3;
+  g.margin = 1e-3;
+  g.z_lower = -2e-3;
+  g.z_upper = 0.0;
+  g.movable = {false, false, true, true};
+  const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
+  const std::vector<std::int64_t> panel{1};
+  EXPECT_EQ(sides_reached(P, panel, zone, g), (std::array<bool, 4>{false, false, false, true}));
+  EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 10e-3, 12e-3}));
+  // Without X the fragment is tested where it is, and would move x1.
+  mpm::Particles Q;
+  Q.add_field("damage", mpm::FieldKind::scalar, "1");
+  for (int k = 0; k < 2; ++k) Q.field("damage")[Q.append(now[k], 1e-9, 1e-6, 1, 0)] = 1.0;
+  EXPECT_EQ(grown_zone(Q, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
 }
 
 // A side at its limit that the damage reaches is held there, and reported; a side on a symmetry

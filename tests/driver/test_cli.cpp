@@ -259,15 +259,15 @@ TEST(Cli, HybridOutputIsBitwiseIdenticalForOneAndTwoThreadsAndOnResume) {
 }
 
 // The small hybrid with `sets` run on 2 threads into scratch(name), on 1 thread, and stopped at
-// step 37 then resumed on 1 thread: all three write the same bytes (snapshots, energy.csv, the
+// step `stop` (37 unless said) then resumed on 1 thread: all three write the same bytes (snapshots, energy.csv, the
 // far field's VTU files), and the energy balance holds to `bound` (the 0.5% of the elastic hybrid
 // above unless said). Returns the two-thread run's directory.
 fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets, const std::string& name,
-                                                    double bound = 0.005) {
+                                                    double bound = 0.005, int stop = 37) {
   const fs::path two = scratch(name), one = scratch(name + "_1"), parts = scratch(name + "_parts");
   EXPECT_EQ(run("run " + hybrid + " --out " + two.string() + " --threads 2" + sets), 0);
   EXPECT_EQ(run("run " + hybrid + " --out " + one.string() + " --threads 1" + sets), 0);
-  EXPECT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=37" + sets), 0);
+  EXPECT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=" + std::to_string(stop) + sets), 0);
   EXPECT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
   for (const fs::path& other : {one, parts}) {
     expect_same_output(two, other);
@@ -349,16 +349,17 @@ TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
 
 // The failing hybrid above with a zone that grows ([far_field.zone.grow]) from 3 mm up to 6 mm
 // by 1 mm steps where the panel's damage comes within 1 mm of its edge, and its displacement probe
-// moved to x = 5 mm, on a far-field node the zone grows over. The zone grows at step 37, where
-// the resumed run stops, so its checkpoint holds the grown zone's band and points: a one-thread
-// and a resumed run repeat the two-thread run byte for byte (snapshots, energy, far-field VTU
-// files and probes). The balance holds to the failing hybrid's 3% (the energy the take-overs do
-// not carry over is booked, not lost). The probe's reading goes on without a jump where its node
-// is taken over: its change across that row (5 steps) is within half of its change over the 5
-// steps before (measured 34%: the core's points take their walls' stress, whose through-thickness
-// part the discrete walls pass to the rear sheet a little unlike the homogenised core; 12% when
-// they started unstressed; 4 times it, a jump of 2.8 of 8.5 um, when the probe took the points'
-// own mean displacement). hvi measure reads the points born after t = 0.
+// moved to x = 5 mm, on a far-field node the zone grows over. The zone first grows at step 41,
+// where the resumed run stops, so its checkpoint holds the grown zone's band and points: a
+// one-thread and a resumed run repeat the two-thread run byte for byte (snapshots, energy,
+// far-field VTU files and probes). The balance holds to the failing hybrid's 3% (the energy the
+// take-overs do not carry over is booked, not lost). The zone grows to [0, 5] x [0, 6] mm: the
+// damage is tested where the panel's points started, so 6 mm is reached along y only. The probe's
+// reading goes on without a jump where its node is taken over (step 79): its change across that
+// row (5 steps) is below 5% of the reading (measured 2.4%, 0.080 of 3.40 um, as the probe of the
+// same run with its zone held at 4 mm, short of the probe, moves by 0.097 um there; when the probe
+// took the points' own mean displacement it jumped by a third of its reading, 2.8 of 8.5 um).
+// hvi measure reads the points born after t = 0.
 TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   const std::string growing =
       " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
@@ -367,29 +368,30 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
       " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]' --set 'far_field.zone.grow.upper=[\"6 mm\",\"6 mm\"]'"
       " --set 'far_field.zone.grow.step=1 mm' --set 'far_field.zone.grow.margin=1 mm'"
       " --set 'measure.rear_deflection.point=[\"5 mm\",\"0 mm\",\"-4 mm\"]'";
-  const fs::path two = expect_hybrid_balances_and_repeats_bitwise(growing, "hybrid_growing", 0.03);
+  const fs::path two = expect_hybrid_balances_and_repeats_bitwise(growing, "hybrid_growing", 0.03, 41);
   for (const char* other : {"hybrid_growing_1", "hybrid_growing_parts"})
     EXPECT_TRUE(read(two / "probes.csv") == read(fs::path(testing::TempDir()) / ("hvi_cli_" + std::string(other)) / "probes.csv"))
         << other;
-  EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"), 1080);  // 27 columns of 40 elements
+  EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"), 840);  // 21 columns of 40 elements
   EXPECT_EQ(summary_number(two, "mpm_zone_limit_reached_steps"), 0);  // the damage stops short of 6 mm
-  EXPECT_NE(read(two / "summary.toml").find("mpm_zone = [ 0.0, 0.0, 0.0060000000000000001, 0.0060000000000000001 ]"),
+  EXPECT_NE(read(two / "summary.toml").find("mpm_zone = [ 0.0, 0.0, 0.0050000000000000001, 0.0060000000000000001 ]"),
             std::string::npos);
   const auto probe = csv_rows(two / "probes.csv");  // step, time, rear_deflection every 5 steps
-  std::size_t taken = 0;  // the first row after the zone took the probe's node (step 114)
-  while (taken < probe.size() && probe[taken][0] < 114) ++taken;
+  std::size_t taken = 0;  // the first row after the zone took the probe's node (step 79)
+  while (taken < probe.size() && probe[taken][0] < 79) ++taken;
   ASSERT_LT(taken + 1, probe.size());
-  ASSERT_GE(taken, 2u);
-  const double before = probe[taken - 1][2] - probe[taken - 2][2], across = probe[taken][2] - probe[taken - 1][2];
-  EXPECT_LT(std::abs(across - before), 0.5 * std::abs(before)) << across << " after " << before;
+  ASSERT_GE(taken, 1u);
+  const double across = probe[taken][2] - probe[taken - 1][2];
+  EXPECT_LT(std::abs(across), 0.05 * std::abs(probe[taken - 1][2])) << across << " from " << probe[taken - 1][2];
   EXPECT_EQ(run("measure " + two.string()), 0);
   EXPECT_NE(read(two / "measurements.json").find("\"perforated\" : true"), std::string::npos);
 }
 
 // The same growing hybrid with its limit at 5 mm: the damage reaches the zone's edge there at
-// step 114 (x = 5 mm) and 122 (y = 5 mm), and the run says so, once per side, and counts the
-// steps it did in the summary and its closing lines (21 of the 134, from 3.41 us to the end). A
-// run stopped at step 118 and resumed reports the same: the record is in the checkpoint.
+// step 122 (y = 5 mm; along x it stays short of it, tested where the points started), and the run
+// says so, once, and counts the steps it did in the summary and its closing lines (13 of the 134,
+// from 3.66 us to the end). A run stopped at step 118 and resumed reports the same: the record is
+// in the checkpoint.
 TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   const std::string growing =
       " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
@@ -402,15 +404,14 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   const std::string command = hvi + " run " + hybrid + " --out " + whole.string() + " --threads 2" + growing + " > " + log + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const std::string said = read(log);
-  EXPECT_NE(said.find("step 114, t = 3.40851e-06 s: the panel's damage reached the MPM zone's edge at x = 5 mm, its limit"),
+  EXPECT_NE(said.find("step 122, t = 3.65608e-06 s: the panel's damage reached the MPM zone's edge at y = 5 mm, its limit"),
             std::string::npos) << said;
-  EXPECT_NE(said.find("step 122, t = 3.6559e-06 s: the panel's damage reached the MPM zone's edge at y = 5 mm, its limit"),
-            std::string::npos) << said;
+  EXPECT_EQ(said.find("reached the MPM zone's edge at x ="), std::string::npos) << said;
   EXPECT_NE(said.find("MPM zone: [0, 5] x [0, 5] mm, 640 far-field elements taken over; the damage held it at its limit "
-                      "(x = 5 mm, y = 5 mm) at 21 steps"),
+                      "(y = 5 mm) at 13 steps"),
             std::string::npos) << said;
-  EXPECT_EQ(summary_number(whole, "mpm_zone_limit_reached_steps"), 21);
-  EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_first_time"), 3.40851e-6, 1e-11);
+  EXPECT_EQ(summary_number(whole, "mpm_zone_limit_reached_steps"), 13);
+  EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_first_time"), 3.65608e-6, 1e-11);
   EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_last_time"), 4e-6, 1e-15);
   ASSERT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=118" + growing), 0);
   ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
