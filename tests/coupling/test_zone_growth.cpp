@@ -218,6 +218,19 @@ TEST(ZoneGrowth, TakeOverGivesTheCoresPointsTheirWallsStress) {
   EXPECT_NEAR(B.solver->energy().total(), e0, 1e-9 * std::abs(e0) + 1e-12 * r.far_field_energy);
 }
 
+// The growth of the tests below: 2 mm steps, a 1 mm margin, the panel z in [-2, 0] mm, x0 and
+// y0 on symmetry planes.
+ZoneGrowth test_growth(const std::array<double, 4>& limit) {
+  ZoneGrowth g;
+  g.limit = limit;
+  g.step = 2e-3;
+  g.margin = 1e-3;
+  g.z_lower = -2e-3;
+  g.z_upper = 0.0;
+  g.movable = {false, false, true, true};
+  return g;
+}
+
 TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   mpm::Particles P;
   P.add_field("damage", mpm::FieldKind::scalar, "1");
@@ -230,13 +243,7 @@ TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
     const std::size_t p = P.append(pts[k], 1e-9, 1e-6, 1, 0);
     P.field("damage")[p] = D[k];
   }
-  ZoneGrowth g;
-  g.limit = {0, 0, 12e-3, 20e-3};
-  g.step = 2e-3;
-  g.margin = 1e-3;
-  g.z_lower = -2e-3;  // the panel: z in [-2, 0] mm
-  g.z_upper = 0.0;
-  g.movable = {false, false, true, true};
+  ZoneGrowth g = test_growth({0, 0, 12e-3, 20e-3});
   const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
   const std::vector<std::int64_t> panel{1};
   EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 10e-3}));
@@ -272,13 +279,7 @@ TEST(ZoneGrowth, AFragmentFlownOutFromTheAxisMovesNoSide) {
     P.field("damage")[p] = 1.0;
     for (int d = 0; d < 3; ++d) P.field(reference_position_field)[3 * p + d] = start[k][d];
   }
-  ZoneGrowth g;
-  g.limit = {0, 0, 20e-3, 20e-3};
-  g.step = 2e-3;
-  g.margin = 1e-3;
-  g.z_lower = -2e-3;
-  g.z_upper = 0.0;
-  g.movable = {false, false, true, true};
+  ZoneGrowth g = test_growth({0, 0, 20e-3, 20e-3});
   const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
   const std::vector<std::int64_t> panel{1};
   EXPECT_EQ(sides_reached(P, panel, zone, g), (std::array<bool, 4>{false, false, false, true}));
@@ -298,13 +299,7 @@ TEST(ZoneGrowth, ASideAtItsLimitThatDamageReachesIsHeld) {
   // Reaches x1 (at its limit), y1 (below its limit) and x0 (a symmetry plane).
   const double pts[][3] = {{11.5e-3, 2e-3, -1e-3}, {5e-3, 9.5e-3, -1e-3}, {0.5e-3, 5e-3, -1e-3}};
   for (const auto& x : pts) P.field("damage")[P.append(x, 1e-9, 1e-6, 1, 0)] = 1.0;
-  ZoneGrowth g;
-  g.limit = {0, 0, 12e-3, 20e-3};
-  g.step = 2e-3;
-  g.margin = 1e-3;
-  g.z_lower = -2e-3;
-  g.z_upper = 0.0;
-  g.movable = {false, false, true, true};
+  ZoneGrowth g = test_growth({0, 0, 12e-3, 20e-3});
   const std::array<double, 4> zone{0, 0, 12e-3, 10e-3};
   const std::vector<std::int64_t> panel{1};
   const std::array<bool, 4> reached = sides_reached(P, panel, zone, g);
