@@ -36,6 +36,21 @@ std::array<bool, 4> sides_reached(const mpm::Particles& P, std::span<const std::
   return reached;
 }
 
+std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres, const std::array<double, 4>& zone,
+                                               const ZoneGrowth& growth) {
+  std::array<bool, 4> reached{};
+  const double m = growth.margin;
+  for (std::size_t k = 0; k + 1 < centres.size(); k += 2) {
+    const double x = centres[k], y = centres[k + 1];
+    const bool across_x = y >= zone[1] - m && y <= zone[3] + m, across_y = x >= zone[0] - m && x <= zone[2] + m;
+    reached[0] = reached[0] || (across_x && x < zone[0] && x >= zone[0] - m);
+    reached[1] = reached[1] || (across_y && y < zone[1] && y >= zone[1] - m);
+    reached[2] = reached[2] || (across_x && x > zone[2] && x <= zone[2] + m);
+    reached[3] = reached[3] || (across_y && y > zone[3] && y <= zone[3] + m);
+  }
+  return reached;
+}
+
 std::array<double, 4> grown_zone(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
                                  const ZoneGrowth& growth) {
   std::array<double, 4> grown = zone;

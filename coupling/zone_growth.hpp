@@ -13,7 +13,11 @@
 // to hold; testing X in plane leaves out the fragments torn off near the axis that fly out along
 // the panel's faces, within the window (on the 300 mm panel at 4.5 km/s, core points from 2-5 mm
 // off the axis 46-62 mm out, just below the rear face, at 30 us). Points without X (a scene
-// whose zone does not grow) are tested where they are.
+// whose zone does not grow) are tested where they are. A side also grows when the far field's
+// own failing layers have torn a cell within `margin` beyond it (sides_reached_from_outside): the
+// far field tears where it must but cannot perforate or throw debris (on the same panel with a
+// 40 mm limit, the zone stopped by the points alone at 37.6 x 34.4 mm while the far field's core
+// tore in the element row beyond y = 34.4 mm).
 //
 // How (take_over), between two steps, for the cells of the grown zone:
 //  1. The far field is sampled (fem::FarField::sample) at the new points' undeformed positions X,
@@ -73,6 +77,14 @@ struct ZoneGrowth {
 // have one), whether or not the side may move.
 std::array<bool, 4> sides_reached(const mpm::Particles& particles, std::span<const std::int64_t> bodies,
                                   const std::array<double, 4>& zone, const ZoneGrowth& growth);
+
+// Per side of `zone`: whether the far field's own damage reaches it from outside, a damaged cell's
+// in-plane centre (x, y pairs, fem::FarField::damaged_cell_centres) lying within `margin` beyond
+// the side and across the zone's extent widened by `margin`. The far field tears only as its
+// failing layers let it and throws no debris, so damage there is a reason for the zone to grow,
+// as damage of the points at the side is.
+std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres, const std::array<double, 4>& zone,
+                                               const ZoneGrowth& growth);
 
 // The zone grown by `step` on the movable sides `reached` names, each up to its limit; `zone`
 // itself when no side needs to move.

@@ -891,6 +891,23 @@ double failed_volume(const Impl& I, bool core) {
 
 double FarField::max_equivalent_plastic_strain() const { return max_accumulated(*impl_, false); }
 double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_, true); }
+std::vector<double> FarField::damaged_cell_centres(double damage) const {
+  const auto& I = *impl_;
+  std::vector<double> centres;
+  if (I.state_size < 8) return centres;  // no failing layer: no damage slot
+  for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
+    for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
+      if (!I.lane_is_plastic(cell, lane)) continue;  // elastic, or removed (its layer is -1)
+      double d = 0.0;
+      for (unsigned q = 0; q < I.n_q; ++q) d = std::max(d, I.state(cell, q, lane)[7]);
+      if (d < damage) continue;
+      const Point<dim> c = I.matrix_free.get_cell_iterator(cell, lane)->center();
+      centres.push_back(c[0]);
+      centres.push_back(c[1]);
+    }
+  return centres;
+}
+
 double FarField::core_failed_volume() const { return failed_volume(*impl_, true); }
 double FarField::facesheet_failed_volume() const { return failed_volume(*impl_, false); }
 

@@ -176,6 +176,11 @@ class FarField {
   // in m^3; 0 without a failing core (facesheets).
   double core_failed_volume() const;
   double facesheet_failed_volume() const;
+  // The undeformed in-plane centres (x, y: 2 per cell) of the cells not removed whose largest
+  // damage over their quadrature points, in a failing core or failing facesheets, is at least
+  // `damage`; in the mesh's cell order, so the same for any thread count. Empty without failing
+  // layers.
+  std::vector<double> damaged_cell_centres(double damage) const;
   // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha, the
   // accumulated plastic strain in a yielding core, and a failing layer's damage) and the plastic
   // work, for checkpoints; empty when no layer is plastic.

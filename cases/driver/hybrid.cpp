@@ -193,7 +193,11 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   if (!growth_) return std::nullopt;
   const std::array<double, 4> zone = coupling_->band().zone;
   const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
-  const std::array<bool, 4> reached = coupling::sides_reached(solver.particles(), bodies, zone, *growth_);
+  // The panel's points damaged at a side, or the far field's own cells torn just beyond it.
+  std::array<bool, 4> reached = coupling::sides_reached(solver.particles(), bodies, zone, *growth_);
+  const std::array<bool, 4> outside =
+      coupling::sides_reached_from_outside(far_field_->damaged_cell_centres(growth_->damage), zone, *growth_);
+  for (int side = 0; side < 4; ++side) reached[side] = reached[side] || outside[side];
   const std::array<bool, 4> held = coupling::sides_held_at_limit(reached, zone, *growth_);
   if (std::find(held.begin(), held.end(), true) != held.end()) {
     if (held_at_limit_.steps++ == 0) held_at_limit_.first_time = solver.time();

@@ -236,7 +236,8 @@ TableSpec far_field_table() {
                         "particles: a side moves out by `step` when a panel point that started within `margin` of "
                         "it, and is within `margin` of the panel's thickness (not its debris or ejecta, nor "
                         "fragments flown out from nearer the axis), has Johnson-Cook damage >= `damage` (or "
-                        "has failed), up to the limit box. The far-field "
+                        "has failed), or when the far field's failing layers tear within `margin` beyond it, "
+                        "up to the limit box. The far-field "
                         "cells it takes are sampled into points that start from the far field's displacement, "
                         "velocity, the facesheets' stress and plastic state and the core walls' stress. "
                         "Absent: the zone stays"};

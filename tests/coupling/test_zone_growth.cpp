@@ -291,6 +291,23 @@ TEST(ZoneGrowth, AFragmentFlownOutFromTheAxisMovesNoSide) {
   EXPECT_EQ(grown_zone(Q, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
 }
 
+// The far field's own torn cells reach a side from outside: a centre within the margin beyond x1
+// and across the zone moves x1; one beyond the margin, one inside the zone (a cell the zone has
+// not removed yet cannot be there, but it must not count) and one past the zone's corner by more
+// than the margin move none.
+TEST(ZoneGrowth, TheFarFieldsTornCellsJustBeyondASideReachIt) {
+  const ZoneGrowth g = test_growth({0, 0, 20e-3, 20e-3});
+  const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
+  const std::vector<double> beyond_x1{10.25e-3, 4e-3}, too_far{11.25e-3, 4e-3}, inside{9.75e-3, 4e-3},
+      past_corner{10.5e-3, 11.5e-3}, at_corner{10.5e-3, 10.5e-3};
+  EXPECT_EQ(sides_reached_from_outside(beyond_x1, zone, g), (std::array<bool, 4>{false, false, true, false}));
+  for (const auto* none : {&too_far, &inside, &past_corner})
+    EXPECT_EQ(sides_reached_from_outside(*none, zone, g), (std::array<bool, 4>{})) << (*none)[0] << ", " << (*none)[1];
+  EXPECT_EQ(sides_reached_from_outside(at_corner, zone, g), (std::array<bool, 4>{false, false, true, true}));
+  const std::array<bool, 4> reached = sides_reached_from_outside(beyond_x1, zone, g);
+  EXPECT_EQ(grown_zone(reached, zone, g), (std::array<double, 4>{0, 0, 12e-3, 10e-3}));
+}
+
 // A side at its limit that the damage reaches is held there, and reported; a side on a symmetry
 // plane (which never moves) or below its limit is not, and the zone grows as before.
 TEST(ZoneGrowth, ASideAtItsLimitThatDamageReachesIsHeld) {

@@ -353,8 +353,10 @@ TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
 // where the resumed run stops, so its checkpoint holds the grown zone's band and points: a
 // one-thread and a resumed run repeat the two-thread run byte for byte (snapshots, energy,
 // far-field VTU files and probes). The balance holds to the failing hybrid's 3% (the energy the
-// take-overs do not carry over is booked, not lost). The zone grows to [0, 5] x [0, 6] mm: the
-// damage is tested where the panel's points started, so 6 mm is reached along y only. The probe's
+// take-overs do not carry over is booked, not lost). The zone grows to [0, 6] x [0, 6] mm, along
+// x at step 133, where the far field's own failing layers have torn just beyond its edge (the
+// points' damage, tested where they started, stopped short of it), and in the last step that tear
+// reaches past the 6 mm limit (one step held at the limit). The probe's
 // reading goes on without a jump where its node is taken over (step 79): its change across that
 // row (5 steps) is below 5% of the reading (measured 2.4%, 0.080 of 3.40 um, as the probe of the
 // same run with its zone held at 4 mm, short of the probe, moves by 0.097 um there; when the probe
@@ -372,9 +374,9 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   for (const char* other : {"hybrid_growing_1", "hybrid_growing_parts"})
     EXPECT_TRUE(read(two / "probes.csv") == read(fs::path(testing::TempDir()) / ("hvi_cli_" + std::string(other)) / "probes.csv"))
         << other;
-  EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"), 840);  // 21 columns of 40 elements
-  EXPECT_EQ(summary_number(two, "mpm_zone_limit_reached_steps"), 0);  // the damage stops short of 6 mm
-  EXPECT_NE(read(two / "summary.toml").find("mpm_zone = [ 0.0, 0.0, 0.0050000000000000001, 0.0060000000000000001 ]"),
+  EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"), 1080);  // 27 columns of 40 elements
+  EXPECT_EQ(summary_number(two, "mpm_zone_limit_reached_steps"), 1);  // the far field's tear, at the end
+  EXPECT_NE(read(two / "summary.toml").find("mpm_zone = [ 0.0, 0.0, 0.0060000000000000001, 0.0060000000000000001 ]"),
             std::string::npos);
   const auto probe = csv_rows(two / "probes.csv");  // step, time, rear_deflection every 5 steps
   std::size_t taken = 0;  // the first row after the zone took the probe's node (step 79)
@@ -388,9 +390,9 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
 }
 
 // The same growing hybrid with its limit at 5 mm: the damage reaches the zone's edge there at
-// step 122 (y = 5 mm; along x it stays short of it, tested where the points started), and the run
-// says so, once, and counts the steps it did in the summary and its closing lines (13 of the 134,
-// from 3.66 us to the end). A run stopped at step 118 and resumed reports the same: the record is
+// step 122 (y = 5 mm; the points' damage) and 133 (x = 5 mm; the far field's own tear beyond it),
+// and the run says so, once per side, and counts the steps it did in the summary and its closing
+// lines (13 of the 134, from 3.66 us to the end). A run stopped at step 118 and resumed reports the same: the record is
 // in the checkpoint.
 TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   const std::string growing =
@@ -406,9 +408,10 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   const std::string said = read(log);
   EXPECT_NE(said.find("step 122, t = 3.65608e-06 s: the panel's damage reached the MPM zone's edge at y = 5 mm, its limit"),
             std::string::npos) << said;
-  EXPECT_EQ(said.find("reached the MPM zone's edge at x ="), std::string::npos) << said;
+  EXPECT_NE(said.find("step 133, t = 3.99986e-06 s: the panel's damage reached the MPM zone's edge at x = 5 mm, its limit"),
+            std::string::npos) << said;
   EXPECT_NE(said.find("MPM zone: [0, 5] x [0, 5] mm, 640 far-field elements taken over; the damage held it at its limit "
-                      "(y = 5 mm) at 13 steps"),
+                      "(x = 5 mm, y = 5 mm) at 13 steps"),
             std::string::npos) << said;
   EXPECT_EQ(summary_number(whole, "mpm_zone_limit_reached_steps"), 13);
   EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_first_time"), 3.65608e-6, 1e-11);

@@ -169,9 +169,14 @@ TEST(CoreFailure, UniaxialStrainTearsAtTheWallsTensileFailureStrain) {
         EXPECT_NEAR(f.plastic_work(), caps.normal * (e - 0.5 * ey) * V, 1e-9 * caps.normal * ef * V);
         EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.normal * ef * V);
         EXPECT_NEAR(f.core_failed_volume(), V, 1e-12 * V);
+        // Every cell of the 2 x 2 x 2 block is torn: its in-plane centres, at L/4 and 3L/4.
+        const std::vector<double> centres = f.damaged_cell_centres(1.0);
+        ASSERT_EQ(centres.size(), 16u);
+        for (const double c : centres) EXPECT_TRUE(std::abs(c - 0.25 * L) < 1e-12 * L || std::abs(c - 0.75 * L) < 1e-12 * L) << c;
       }
       if (k < kf) {
         EXPECT_EQ(f.core_failed_volume(), 0.0) << "step " << k;
+        EXPECT_TRUE(f.damaged_cell_centres(1.0).empty()) << "step " << k;
       }
     }
     for (int k = 29; k >= -10; --k) {  // back through zero and 10 steps into compression
@@ -251,6 +256,7 @@ TEST(CoreFailure, EnergyIsConservedThroughTheTearInMotion) {
 TEST(CoreYield, OnlyWhenNamedAndNotWithJ2) {
   EXPECT_FALSE(FarField(core_block(1, false)).plastic());
   EXPECT_EQ(FarField(core_block(1, true)).core_failed_volume(), 0.0);  // a yielding core keeps no damage
+  EXPECT_TRUE(FarField(core_block(1, true)).damaged_cell_centres(0.0).empty());
   LayeredMesh both = core_block(1, true);
   both.layers[0].elasticity = isotropic(test::E, test::nu);
   both.layers[0].plasticity = test::al6061();
