@@ -82,10 +82,15 @@ void Solver::adopt_particles(std::size_t first) {
     for (std::size_t p = first; p < n; ++p)
       if (a[3 * p] == 0.0) a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
   }
-  for (std::size_t p = first; p < n; ++p) materials_[particles_.material[p]]->initialise(particles_, {p, p + 1});
+  // The new points in runs of one material, one call (one parallel loop) per run: a take-over
+  // adopts thousands of points, and a loop per point cost more than the rest of it.
   double signal = max_signal_speed_;
-  for (std::size_t p = first; p < n; ++p)
-    signal = std::max(signal, materials_[particles_.material[p]]->max_signal_speed(particles_, {p, p + 1}));
+  for (std::size_t begin = first, end = first; begin < n; begin = end) {
+    const auto m = particles_.material[begin];
+    while (end < n && particles_.material[end] == m) ++end;
+    materials_[m]->initialise(particles_, {begin, end});
+    signal = std::max(signal, materials_[m]->max_signal_speed(particles_, {begin, end}));
+  }
   max_signal_speed_ = signal;
   bin_particles();
   sort_by_material_and_block();
