@@ -187,6 +187,16 @@ TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
   EXPECT_NEAR(std::stod(rows.at("v100_r1").at("front")) - std::stod(rows.at("still").at("front")), 0.2e-3, 1e-12);
   const std::string csv = read(out / "sweep.csv");
   EXPECT_LT(csv.find("\nv100_r1,"), csv.find("\nstill,"));  // the study's order
+
+  // A run continued by hand to a later end: the same sweep, its end time set to the run's, counts
+  // it done and tables its new state (100 m/s x 3 us), not the row of its first sitting.
+  ASSERT_EQ(run("run --resume " + (out / "v100_r1").string() + " --set run.end_time=3us", log), 0) << read(log);
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1 --set run.end_time=3us", log),
+            0)
+      << read(log);
+  EXPECT_NE(read(log).find("v100_r1: done"), std::string::npos) << read(log);
+  const auto later = table(out / "sweep.csv");
+  EXPECT_NEAR(std::stod(later.at("v100_r1").at("front")) - std::stod(later.at("still").at("front")), 0.3e-3, 1e-12);
 }
 
 TEST(Sweep, ABadLevelStopsTheSweepBeforeAnythingRuns) {
