@@ -361,10 +361,8 @@ int run_sweep(const SweepOptions& o) {
       const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
       if (resume) {
         args = {"run", "--resume", dir.string()};
-        if (extend) {  // the measures of the earlier end are stale
-          args.insert(args.end(), {"--set", fmt::format("run.end_time={:.17g}", *extend)});
-          for (const char* f : {"measurements.csv", "measurements.json"}) fs::remove(dir / f);
-        }
+        // hvi run --resume removes the measurements of the earlier end, so the run is measured again.
+        if (extend) args.insert(args.end(), {"--set", fmt::format("run.end_time={:.17g}", *extend)});
       } else {
         args = {"run", study.scene, "--out", dir.string(), "--overwrite"};
         for (const auto& s : run.overrides) args.insert(args.end(), {"--set", s});
