@@ -77,6 +77,9 @@ int measure_command(const MeasureOptions& options);
 // The files, for tests and scripts.
 void write_measurements(const Measurements& m, const std::filesystem::path& dir);
 void write_history(const std::vector<Measurements>& history, const std::filesystem::path& dir);
+// Removes what the two above wrote into a run directory, and the sweep's log of the measurement
+// (measure.log): a run replaced or continued makes them describe a state it no longer ends in.
+void remove_measurements(const std::filesystem::path& dir);
 // The printed report (mm).
 void print_measurements(const Measurements& m);
 // The headline numbers, SI, for a run's summary (the [[measure]] kind "holes"): front_perforated

@@ -199,6 +199,12 @@ void write_history(const std::vector<Measurements>& history, const fs::path& dir
   write_csv(history, dir / "measurements_history.csv");
 }
 
+void remove_measurements(const fs::path& dir) {
+  for (const char* f : {"measurements.json", "measurements.csv", "top_view_front.pgm", "top_view_rear.pgm",
+                        "measurements_history.csv", "measure.log"})
+    fs::remove(dir / f);
+}
+
 std::vector<std::pair<std::string, double>> headline_quantities(const Measurements& m) {
   std::vector<std::pair<std::string, double>> q;
   auto sheet = [&](const std::optional<SheetMeasurement>& s, const char* which) {

@@ -259,12 +259,9 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       return input_error;
     }
 
-  // What `hvi measure` wrote describes the state it measured: a run replaced or continued makes it
-  // stale, so it goes (a sweep then measures the run again; by hand, `hvi measure` does).
-  const auto measure_outputs = {"measurements.json", "measurements.csv", "measurements_history.csv", "measure.log",
-                                "top_view_front.pgm", "top_view_rear.pgm"};
-  if (options.overwrite || options.resume)
-    for (const char* f : measure_outputs) fs::remove(dir / f);
+  // What `hvi measure` wrote is stale once the run is replaced or continued: a sweep then measures
+  // the run again; by hand, `hvi measure` does.
+  if (options.overwrite || options.resume) remove_measurements(dir);
   if (options.overwrite && !options.resume) {
     for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
                           "run.resumed.json", "resumes.jsonl", "failure.h5", "far_field.pvd", "probes.csv"})
