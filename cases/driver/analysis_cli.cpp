@@ -63,6 +63,7 @@ MeasureOptions MeasureCli::options() const {
   o.gap_closing = gap_closing;
   o.link_factor = link_factor;
   o.images = images;
+  o.out = out;
   return o;
 }
 
@@ -70,7 +71,8 @@ std::unique_ptr<MeasureCli> add_measure_command(CLI::App& app) {
   auto m = std::make_unique<MeasureCli>();
   CLI::App* c = m->command = app.add_subcommand("measure",
                                                 "Hole sizes of the facesheets (paper eqs. 8-12), "
-                                                "rear bulge and debris cloud of a finished run");
+                                                "rear bulge and debris cloud of a run (finished, "
+                                                "or still going: its snapshots so far)");
   c->add_option("run", m->run, "Run directory (hvi run --out)")->required();
   c->add_option("--snapshot", m->snapshot, "Snapshot index, 'last', or 'all' (one row per snapshot in measurements_history.csv)")->capture_default_str();
   c->add_option("--axis", m->axis,
@@ -99,6 +101,9 @@ std::unique_ptr<MeasureCli> add_measure_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   c->add_flag("--images", m->images, "Write the top views as RUN/top_view_{front,rear}.pgm");
+  c->add_option("--out", m->out,
+                "Write the files to this directory instead of RUN (created if missing; for a run "
+                "still going)");
   return m;
 }
 

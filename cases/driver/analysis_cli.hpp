@@ -16,7 +16,7 @@ namespace hvi::driver {
 
 struct MeasureCli {
   CLI::App* command = nullptr;
-  std::string run, snapshot = "last", axis, resolution, front, rear, core_height, rotation;
+  std::string run, snapshot = "last", axis, resolution, front, rear, core_height, rotation, out;
   std::string front_rule = "two-chords", rear_rule = "six-directions";
   bool no_mirror = false, images = false;
   double gap_closing = 0.375, link_factor = 1.75;

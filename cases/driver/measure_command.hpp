@@ -1,12 +1,15 @@
 #pragma once
 // hvi measure RUN_DIR: the paper's hole measurements (Section 4.2, eqs. 8-12), the rear bulge and
-// the debris cloud of a finished run, from its resolved scene and snapshots. Writes
+// the debris cloud of a run, from its resolved scene and snapshots (a run still going has written
+// whole snapshots only: each is renamed into place once complete). Writes
 // RUN_DIR/measurements.json and RUN_DIR/measurements.csv (one header line and one row; SI units;
 // the columns hvi fit reads). With --snapshot all, every snapshot: RUN_DIR/measurements_history.csv
 // (the same columns, one row per snapshot), to see whether the holes have settled.
 //   hvi measure runs/study_1g                      # last snapshot, panel facesheets
 //   hvi measure runs/plate --front plate --snapshot 5 --axis "1 mm,0 mm"
 //   hvi measure runs/validation_printed/case3 --snapshot all
+//   hvi measure runs/long_run --snapshot all --out runs/long_run_so_far   # while it runs
+// (--out: the files go to that directory instead of RUN_DIR.)
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -34,6 +37,9 @@ struct MeasureOptions {
   double gap_closing = 0.375;  // see analysis/top_view.hpp
   double link_factor = 1.75;   // see analysis/clusters.hpp
   bool images = false;         // write the top views as PGM images
+  // Where the files go (created if missing); empty: the run directory. Measuring a run that is
+  // still going into a directory of its own leaves the run's directory as the run writes it.
+  std::filesystem::path out;
 };
 
 struct SheetMeasurement {

@@ -257,6 +257,7 @@ void print_measurements(const Measurements& m) {
 }
 
 int measure_command(const MeasureOptions& options) {
+  const fs::path dir = options.out.empty() ? options.run : options.out;
   if (options.snapshot == "all") {
     const std::vector<Measurements> history = measure_history(options);
     fmt::print("hvi measure {}: {} snapshots\n", options.run.string(), history.size());
@@ -272,14 +273,16 @@ int measure_command(const MeasureOptions& options) {
                  hole(m.front), hole(m.rear),
                  m.bulge ? fmt::format("{:.3f}", m.bulge->displacement / mm) : std::string{"-"},
                  m.debris.mass * 1e6);
-    write_history(history, options.run);
-    fmt::print("output: {}\n", (options.run / "measurements_history.csv").string());
+    fs::create_directories(dir);
+    write_history(history, dir);
+    fmt::print("output: {}\n", (dir / "measurements_history.csv").string());
     return ExitCode::success;
   }
   const Measurements m = measure_run(options);
   print_measurements(m);
-  write_measurements(m, options.run);
-  fmt::print("output: {} and measurements.csv{}\n", (options.run / "measurements.json").string(),
+  fs::create_directories(dir);
+  write_measurements(m, dir);
+  fmt::print("output: {} and measurements.csv{}\n", (dir / "measurements.json").string(),
              options.images ? ", top_view_*.pgm" : "");
   return ExitCode::success;
 }

@@ -107,8 +107,13 @@ std::size_t snapshot_bytes_per_particle(const Particles& P) {
 void SnapshotWriter::write(const Solver& solver) {
   Entry entry{file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};
   fs::create_directories(directory_ / "snapshots");
-  for (const auto& [name, shape] : write_datasets(directory_ / entry.file, solver))
+  // Written aside and renamed once complete, as the checkpoint is: a snapshot listed by files()
+  // is whole, so `hvi measure` may read a run that is still writing them.
+  const fs::path path = directory_ / entry.file;
+  const fs::path tmp = path.string() + ".tmp";
+  for (const auto& [name, shape] : write_datasets(tmp, solver))
     entry.attributes.push_back({name, shape.first, shape.second});
+  fs::rename(tmp, path);
   entries_.push_back(std::move(entry));
   ++next_index_;
   write_index();
@@ -139,6 +144,10 @@ void SnapshotWriter::resume(std::int64_t last_step) {
     }
     if (!keep) fs::remove(path);
   }
+  // A snapshot the interrupted run did not finish writing.
+  if (fs::is_directory(directory_ / "snapshots"))
+    for (const auto& f : fs::directory_iterator(directory_ / "snapshots"))
+      if (f.path().extension() == ".tmp") fs::remove(f.path());
   write_index();
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -289,6 +290,39 @@ TEST(MeasureCommand, HistoryMeasuresEverySnapshot) {
   ASSERT_EQ(t.rows.size(), 2u);
   EXPECT_EQ(t.rows[0][t.column("rear_perforated")], "false");
   EXPECT_EQ(t.rows[1], one.rows[0]);
+}
+
+// --out: the files go to a directory of their own (created), the run's is left as it was, and
+// they are the ones a measure into the run's directory writes, to the byte.
+TEST(MeasureCommand, OutWritesElsewhereAndLeavesTheRunAlone) {
+  const fs::path dir = make_run("out", true);
+  const fs::path out = fs::path(testing::TempDir()) / "hvi_measure_out_elsewhere" / "so_far";
+  fs::remove_all(out.parent_path());
+  auto read = [](const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  MeasureOptions o;
+  o.run = dir;
+  o.out = out;
+  for (const char* which : {"all", "last"}) {
+    o.snapshot = which;
+    ASSERT_EQ(measure_command(o), 0);
+  }
+  for (const char* f : {"measurements.json", "measurements.csv", "measurements_history.csv"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+    EXPECT_FALSE(fs::exists(dir / f)) << f;
+  }
+  o.out.clear();
+  for (const char* which : {"all", "last"}) {
+    o.snapshot = which;
+    ASSERT_EQ(measure_command(o), 0);
+  }
+  for (const char* f : {"measurements.json", "measurements.csv", "measurements_history.csv"}) {
+    const std::string here = read(out / f);
+    EXPECT_GT(here.size(), 100u) << f;
+    EXPECT_EQ(here, read(dir / f)) << f;
+  }
 }
 
 // Snapshots are named by index: a run pruned by hand keeps its numbering, and one without the

@@ -296,9 +296,16 @@ TEST(Snapshots, ResumeKeepsEarlierSnapshots) {
       if (k == 1) index_after_two = read_file(dir.path() / "particles.xmf");
     }
   }
+  // A snapshot is written aside and renamed once whole, so what a run killed while writing one
+  // leaves is a .tmp file: never listed (a measure of a running run reads whole snapshots only),
+  // and removed by the resume.
+  const fs::path unfinished = dir.path() / (io::SnapshotWriter::file_name(3) + ".tmp");
+  std::ofstream(unfinished) << "half a snapshot";
+  EXPECT_EQ(io::SnapshotWriter::files(dir.path()).size(), 3u);
   io::SnapshotWriter resumed(dir.path());
   resumed.resume(10);
   EXPECT_EQ(resumed.count(), 2u);
+  EXPECT_FALSE(fs::exists(unfinished));
   EXPECT_TRUE(fs::exists(dir.path() / io::SnapshotWriter::file_name(1)));
   EXPECT_FALSE(fs::exists(dir.path() / io::SnapshotWriter::file_name(2)));
   const std::string index = read_file(dir.path() / "particles.xmf");
