@@ -100,7 +100,8 @@ std::unique_ptr<MeasureCli> add_measure_command(CLI::App& app) {
                 "Attached-cluster link / point spacing (0: keep detached pieces)")
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
-  c->add_flag("--images", m->images, "Write the top views as RUN/top_view_{front,rear}.pgm");
+  c->add_flag("--images", m->images,
+              "Write the top views as top_view_{front,rear}.pgm beside the measurements");
   c->add_option("--out", m->out,
                 "Write the files to this directory instead of RUN (created if missing; for a run "
                 "still going)");
