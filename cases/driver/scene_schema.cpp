@@ -240,7 +240,7 @@ TableSpec far_field_table() {
                         "up to the limit box. The far-field "
                         "cells it takes are sampled into points that start from the far field's displacement, "
                         "velocity, the facesheets' stress and plastic state and the core walls' stress. "
-                        "Absent: the zone stays"};
+                        "Absent: the zone stays as declared."};
   grow.vector_required("lower", dims::length, "x, y of the largest zone's lower corner (on grid planes)", 2)
       .vector_required("upper", dims::length, "x, y of the largest zone's upper corner (on grid planes)", 2)
       .optional_quantity("step", dims::length, positive(), "How far a side moves at once, a whole number of "
