@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -35,8 +34,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::atomic<bool> interrupt_requested{false};
-extern "C" void on_interrupt(int) { interrupt_requested = true; }
+// The signal (SIGINT or SIGTERM) that asked the run to stop at the end of its step; 0: none.
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int number) { stop_signal = number; }
 
 // Snapshot/checkpoint times: multiples of an interval; due once the run has reached them.
 struct Schedule {
@@ -346,8 +346,13 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   // A checkpoint exists from the start, so a run that fails always leaves one from before.
   if (!options.resume) checkpoint(0.0);
 
-  interrupt_requested = false;
-  auto previous_handler = std::signal(SIGINT, on_interrupt);
+  stop_signal = 0;
+  auto previous_sigint = std::signal(SIGINT, on_stop_signal);
+  auto previous_sigterm = std::signal(SIGTERM, on_stop_signal);
+  const auto restore_signals = [&] {
+    std::signal(SIGINT, previous_sigint);
+    std::signal(SIGTERM, previous_sigterm);
+  };
   Progress progress(scene.end_time);
   progress.start(s);
   wall_start = std::chrono::steady_clock::now();
@@ -358,8 +363,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   const double end = scene.end_time;
   try {
     while (s.time() < end * (1 - 1e-12)) {
-      if (interrupt_requested) {
-        code = interrupted;
+      if (stop_signal != 0) {
+        code = stop_signal == SIGTERM ? terminated : interrupted;
         break;
       }
       if (scene.max_steps > 0 && s.step_count() >= scene.max_steps) break;
@@ -419,14 +424,14 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     mpm::io::write_snapshot_file(dir / "failure.h5", s);
     fmt::print(stderr, "hvi: {} holds the state at the failure; checkpoint.h5 (step {}) the last state before it\n",
                (dir / "failure.h5").string(), last_checkpoint_step);
-    std::signal(SIGINT, previous_handler);
+    restore_signals();
     return run_failed;
   }
   const double wall = elapsed();
   checkpoint(wall);  // the end state, or where an interruption or max_steps stopped the run
   progress.update(s, true);
   progress.finish();
-  std::signal(SIGINT, previous_handler);
+  restore_signals();
 
   const std::int64_t steps = s.step_count() - first_step;
   const mpm::EnergyReport e = s.energy();
@@ -434,7 +439,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   const double rate = particle_steps / std::max(wall, 1e-9);
   const std::size_t peak_memory = peak_memory_bytes();  // of the run, before the hole measurement reads snapshots
   fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
-             code == interrupted ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
+             stopped_by_signal(code) ? "interrupted" : (s.time() >= end * (1 - 1e-12) ? "finished" : "stopped (run.max_steps)"),
              s.time(), s.step_count(), steps, wall, rate, threads, peak_memory / 1e6);
   if (options.resume)
     fmt::print("  wall time of all the invocations that made this run: {}\n",
@@ -484,8 +489,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   for (const auto& [name, value] : measured) fmt::print("  measure {} = {:.8g}\n", name, value);
   fmt::print("\n{}\n", timer.table());
   write_timing(dir, timer);
-  const bool finished = code != interrupted && s.time() >= end * (1 - 1e-12);
-  const char* status = code == interrupted ? "interrupted" : (finished ? "finished" : "stopped");
+  const bool finished = !stopped_by_signal(code) && s.time() >= end * (1 - 1e-12);
+  const char* status = stopped_by_signal(code) ? "interrupted" : (finished ? "finished" : "stopped");
   toml::table summary{{"time", s.time()},
                       {"steps", s.step_count()},
                       {"particles", static_cast<std::int64_t>(s.particles().size())},
@@ -541,7 +546,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       summary.insert("far_field_plastic_work", hybrid->far_field().plastic_work());
     }
   }
-  const bool stopped_early = code == interrupted || (scene.max_steps > 0 && s.time() < end * (1 - 1e-12));
+  const bool stopped_early = stopped_by_signal(code) || (scene.max_steps > 0 && s.time() < end * (1 - 1e-12));
   // The panel's holes, from the final snapshot (as hvi measure RUN_DIR does). The solver and the
   // far field go first, their memory back to the system: the measure reads the snapshots and on a
   // large model needs memory of its own, which then does not come on top of the run's.

@@ -19,8 +19,12 @@ struct RunOptions {
   std::string command_line; // recorded in run.json
 };
 
-// Exit codes of `hvi run`.
-enum ExitCode : int { success = 0, input_error = 2, run_failed = 3, interrupted = 130 };
+// Exit codes of `hvi run`: 128 + the signal for a run stopped by SIGINT (Ctrl-C) or SIGTERM (what a
+// batch scheduler sends before its time limit), each after a checkpoint.
+enum ExitCode : int { success = 0, input_error = 2, run_failed = 3, interrupted = 130, terminated = 143 };
+
+// Whether an exit code is that of a run stopped by a signal (and resumable from its checkpoint).
+constexpr bool stopped_by_signal(int code) { return code == interrupted || code == terminated; }
 
 // Runs `scene` (for a resume: the run directory's resolved scene, possibly with overrides).
 int run_scene(const scene::Scene& scene, const RunOptions& options);

@@ -386,10 +386,10 @@ int run_sweep(const SweepOptions& o) {
       const int status = run_child(o.hvi, args, run_log, true);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       summary = read_run_summary(dir);
-      if (status == interrupted) {
+      if (stopped_by_signal(status)) {
         fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n", run.name);
         write_table(whole, selected, o.out, status_of);
-        return interrupted;
+        return status;
       }
       if (status != success || !summary.finished()) {
         status_of[run.name] = "failed";

@@ -4,8 +4,12 @@
 // byte; the same for a hybrid (a scene with a [far_field]), whose balance holds across the
 // coupling; displacement probes; hvi compare.
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -166,6 +170,53 @@ TEST(Cli, ResumedRunMatchesUninterruptedRun) {
   EXPECT_NE(lines[1].find("\"threads\" : 1"), std::string::npos) << lines[1];
   EXPECT_NE(lines[1].find("\"git_revision\" : \""), std::string::npos) << lines[1];
   EXPECT_FALSE(fs::exists(full / "resumes.jsonl"));
+}
+
+// SIGTERM, what a batch scheduler sends before its time limit, stops a run as Ctrl-C does: at the
+// end of the step, with a checkpoint and exit code 143 (128 + 15). Wherever the signal lands, the
+// run resumed from that checkpoint continues it byte for byte.
+TEST(Cli, SigtermStopsTheRunWithACheckpointItResumesFrom) {
+  const fs::path stopped = scratch("sigterm"), straight = scratch("sigterm_straight");
+  // 100 times the scene's 4 us (about 10,000 steps), so the signal arrives long before the end.
+  const std::string end_time = "run.end_time=400us";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    execl(hvi.c_str(), hvi.c_str(), "run", scene.c_str(), "--out", stopped.c_str(), "--threads", "1",
+          "--set", end_time.c_str(), static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  // Wait until the time loop has written a few energy rows (one every 5 steps), then signal.
+  const auto rows = [&] {
+    std::ifstream in(stopped / "energy.csv");
+    return std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n');
+  };
+  for (int i = 0; i < 6000 && rows() < 20; ++i) usleep(10000);
+  ASSERT_GE(rows(), 20) << "the run did not start its time loop within 60 s";
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of stopping";
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  EXPECT_NE(read(stopped / "summary.toml").find("status = 'interrupted'"), std::string::npos);
+  const auto steps = static_cast<std::int64_t>(summary_number(stopped, "steps"));
+  ASSERT_GE(steps, 95);      // at least the 19 rows' steps before the signal
+  ASSERT_LT(steps, 10000);   // well before the end
+  // Resumed to 10 steps past the signal, and the same run without the signal.
+  const std::string until = " --set run.max_steps=" + std::to_string(steps + 10);
+  ASSERT_EQ(run("run --resume " + stopped.string() + " --threads 2" + until), 0);
+  ASSERT_EQ(run("run " + scene + " --out " + straight.string() + " --threads 2 --set " + end_time + until), 0);
+  EXPECT_EQ(summary_number(stopped, "steps"), static_cast<double>(steps + 10));
+  EXPECT_TRUE(read(stopped / "energy.csv") == read(straight / "energy.csv")) << "energy.csv differs";
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(straight / "snapshots")) {
+    EXPECT_TRUE(read(entry.path()) == read(stopped / "snapshots" / entry.path().filename()))
+        << entry.path().filename() << " differs";
+    ++files;
+  }
+  EXPECT_GE(files, 1);
+  EXPECT_EQ(files, std::distance(fs::directory_iterator(stopped / "snapshots"), fs::directory_iterator{}));
 }
 
 // A run that goes wrong stops at the first bad step with a message naming the particle, body,
