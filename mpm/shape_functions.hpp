@@ -40,24 +40,22 @@ struct GimpShape {
   static constexpr int width = 3;
   static int lowest(double s, double a) { return static_cast<int>(std::floor(s - a)); }
   static void weights(double s, int i0, double a, double* N, double* dN) {
+    // Which piece a node falls on depends on where the particle sits in its cell, random from
+    // one particle to the next, so a branch on it cannot be predicted. Each node therefore forms
+    // its two quotients from selected operands and then selects its piece: every selected value
+    // is the expression of the piecewise form above, with the same operands in the same order,
+    // so the weights are the same to the last bit (tests/mpm/test_shape_functions.cpp).
+    const double two_a = 2.0 * a, four_a = 4.0 * a;
     for (int k = 0; k < width; ++k) {
       const double d = s - (i0 + k);
       const double ad = std::fabs(d);
       const double sgn = d < 0.0 ? -1.0 : 1.0;
-      if (ad < a) {
-        N[k] = 1.0 - (d * d + a * a) / (2.0 * a);
-        dN[k] = -d / a;
-      } else if (ad < 1.0 - a) {
-        N[k] = 1.0 - ad;
-        dN[k] = -sgn;
-      } else if (ad < 1.0 + a) {
-        const double u = 1.0 + a - ad;
-        N[k] = u * u / (4.0 * a);
-        dN[k] = -sgn * u / (2.0 * a);
-      } else {
-        N[k] = 0.0;
-        dN[k] = 0.0;
-      }
+      const double u = 1.0 + a - ad;
+      const bool inner = ad < a, middle = ad < 1.0 - a, outer = ad < 1.0 + a;
+      const double n_quotient = (inner ? d * d + a * a : u * u) / (inner ? two_a : four_a);
+      const double dn_quotient = (inner ? -d : -sgn * u) / (inner ? a : two_a);
+      N[k] = inner ? 1.0 - n_quotient : middle ? 1.0 - ad : outer ? n_quotient : 0.0;
+      dN[k] = inner ? dn_quotient : middle ? -sgn : outer ? dn_quotient : 0.0;
     }
   }
 };

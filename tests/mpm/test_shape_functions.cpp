@@ -1,6 +1,7 @@
 // Shape functions (mpm/shape_functions.hpp): partition of unity and zero gradient sum in 1D and
-// for the 3D tensor product, hand-computed uGIMP values, continuity across the pieces, and that
-// the fixed stencil starting at lowest() covers the whole support.
+// for the 3D tensor product, hand-computed uGIMP values, continuity across the pieces, that
+// the fixed stencil starting at lowest() covers the whole support, and that the branch-free uGIMP
+// weights are bit for bit the piecewise formula.
 #include <cmath>
 #include <random>
 
@@ -174,6 +175,58 @@ TEST(ShapeFunctions, GimpContinuity) {
       ASSERT_NEAR(fd, gimp_dN(d, a), 1e-8) << "d = " << d;
     }
   }
+}
+
+// GimpShape::weights selects its piece without branching (for speed, mpm/shape_functions.hpp).
+// The piecewise form, written out as the uGIMP formula reads, must give the same bits: a run's
+// output is compared byte for byte between builds and thread counts. Random points, and points on
+// and beside the joints |d| = a, 1 - a, 1 + a (where a wrong comparison would pick the neighbouring
+// piece, whose value agrees to round-off only), all bit for bit.
+void piecewise_gimp(double d, double a, double& N, double& dN) {
+  const double ad = std::fabs(d);
+  const double sgn = d < 0.0 ? -1.0 : 1.0;
+  if (ad < a) {
+    N = 1.0 - (d * d + a * a) / (2.0 * a);
+    dN = -d / a;
+  } else if (ad < 1.0 - a) {
+    N = 1.0 - ad;
+    dN = -sgn;
+  } else if (ad < 1.0 + a) {
+    const double u = 1.0 + a - ad;
+    N = u * u / (4.0 * a);
+    dN = -sgn * u / (2.0 * a);
+  } else {
+    N = 0.0;
+    dN = 0.0;
+  }
+}
+
+void expect_bitwise_piecewise(double s, double a) {
+  const int i0 = GimpShape::lowest(s, a);
+  double N[3], dN[3];
+  GimpShape::weights(s, i0, a, N, dN);
+  for (int k = 0; k < 3; ++k) {
+    double Nr, dNr;
+    piecewise_gimp(s - (i0 + k), a, Nr, dNr);
+    ASSERT_EQ(std::signbit(N[k]), std::signbit(Nr));
+    ASSERT_EQ(N[k], Nr) << "s = " << s << ", a = " << a << ", node " << k;
+    ASSERT_EQ(dN[k], dNr) << "s = " << s << ", a = " << a << ", node " << k;
+  }
+}
+
+TEST(ShapeFunctions, GimpWeightsBitwiseThePiecewiseForm) {
+  std::mt19937_64 rng(4242);
+  std::uniform_real_distribution<double> u(-50.0, 50.0), half(0.01, 0.5);
+  for (int k = 0; k < kSamples; ++k) expect_bitwise_piecewise(u(rng), half(rng));
+  for (const double a : kHalfWidths)
+    for (const double b : {0.0, a, 1.0 - a, 1.0 + a})
+      for (const double i : {-3.0, 0.0, 7.0})
+        for (const double sign : {-1.0, 1.0}) {
+          const double s = i + sign * b;
+          expect_bitwise_piecewise(s, a);
+          expect_bitwise_piecewise(std::nextafter(s, -1e9), a);
+          expect_bitwise_piecewise(std::nextafter(s, 1e9), a);
+        }
 }
 
 }  // namespace
