@@ -32,7 +32,9 @@ Solver::Solver(GridGeometry grid, SolverSettings settings,
 }
 
 TransferContext Solver::transfer_context() const {
-  return {settings_.shape, half_width_, settings_.flip, dt_};
+  TransferContext c{settings_.shape, half_width_, settings_.flip, dt_};
+  if (settings_.stencil_cache && is_gimp(settings_.shape) && !contact_) c.stencils = &stencils_;
+  return c;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -189,6 +191,7 @@ void Solver::step(double max_dt) {
 
 void Solver::bin_particles() {
   auto t = timer_.scope("bin particles");
+  stencils_.invalidate();
   std::vector<std::uint64_t> extra;
   for (const auto* c : couplings_) c->request_blocks(extra);
   if (!contact_) {
@@ -287,6 +290,7 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
 // the Taylor-bar foot at 11.34 mm instead of 11.43 (benchmark 11.18-11.22).
 void Solver::stretch_particle_domains() {
   auto t = timer_.scope("stretch particle domains");
+  stencils_.invalidate();
   double* a = half_width_->data();
   const double* L = particles_.velocity_gradient.data();
   const double floor = 0.1 * geometry_.cell_size, ceiling = 0.5 * geometry_.cell_size, dt = dt_;
@@ -463,7 +467,8 @@ EnergyReport Solver::energy() const {
 }
 
 std::size_t Solver::bytes() const {
-  return particles_.bytes() + grid_.bytes() + bins_.bytes() + (volumetric_ ? volumetric_->bytes() : 0) +
+  return particles_.bytes() + grid_.bytes() + bins_.bytes() + stencils_.bytes() +
+         (volumetric_ ? volumetric_->bytes() : 0) +
          (contact_ ? contact_->bytes() : 0) + (volumetric1_ ? volumetric1_->bytes() : 0);
 }
 

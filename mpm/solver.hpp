@@ -48,6 +48,8 @@ struct SolverSettings {
   double min_time_step_fraction = 1e-3;
   int reorder_interval = 16;  // steps between sorting particle arrays by material and block
   Dilatation dilatation = Dilatation::particle;
+  // GIMP on one field: keep the points' stencils between a step's transfers (transfers.hpp).
+  bool stencil_cache = true;
   // Two velocity fields with contact between them (contact.hpp); none: one field, bodies stick.
   std::optional<ContactSettings> contact;
 };
@@ -197,6 +199,9 @@ class Solver {
   // Contact only: field 1's grid and bins, and its node average.
   std::unique_ptr<BodyContact> contact_;
   std::unique_ptr<VolumetricAverage> volumetric1_;
+  // GIMP on one velocity field: the points' stencils from the binning to the domains' stretch
+  // (transfers.hpp). Invalidated by bin_particles() and stretch_particle_domains().
+  mutable StencilCache stencils_;
 
   SolverState state_;
   double dt_ = 0.0;  // of the step in progress

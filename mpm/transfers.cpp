@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 #include "mpm/types.hpp"
 
@@ -13,6 +14,7 @@ template <class Shape>
 struct NodeStencil {
   static constexpr int W = Shape::width;
   double N[3][W], dN[3][W];
+  int lowest[3];          // lowest node per axis, relative to the owner block's first node
   int node_offset[3][W];  // local node index contribution per axis
   int block_bit[3][W];    // neighbour bit per axis
   int first[3], last[3];  // the nodes with nonzero weight per axis (GIMP: 2 or 3 of the 3)
@@ -25,13 +27,7 @@ struct NodeStencil {
       const double ad = a ? a[d] : 0.0;
       const int base = Shape::lowest(s, ad);
       Shape::weights(s, base, ad, N[d], dN[d]);
-      static constexpr int stride[3] = {1, SparseGrid::block_edge,
-                                        SparseGrid::block_edge * SparseGrid::block_edge};
-      for (int k = 0; k < W; ++k) {
-        const int l = base - block_origin[d] + k;  // 0 .. 2*edge-1
-        block_bit[d][k] = (l / SparseGrid::block_edge) << d;
-        node_offset[d][k] = (l % SparseGrid::block_edge) * stride[d];
-      }
+      lowest[d] = base - block_origin[d];
       // Skipping nodes of zero weight adds nothing to any sum, so results are unchanged.
       first[d] = 0;
       last[d] = W - 1;
@@ -40,6 +36,42 @@ struct NodeStencil {
         while (N[d][last[d]] == 0.0 && dN[d][last[d]] == 0.0) --last[d];
       }
     }
+    resolve_nodes();
+  }
+
+  // Into and out of a StencilCache (the weights, lowest nodes and nonzero ranges).
+  void store(StencilWeights<W>& c) const {
+    for (int d = 0; d < 3; ++d) {
+      for (int k = 0; k < W; ++k) {
+        c.N[d][k] = N[d][k];
+        c.dN[d][k] = dN[d][k];
+      }
+      c.lowest[d] = static_cast<std::int8_t>(lowest[d]);
+      c.first[d] = static_cast<std::int8_t>(first[d]);
+      c.last[d] = static_cast<std::int8_t>(last[d]);
+    }
+  }
+  void load(const StencilWeights<W>& c) {
+    for (int d = 0; d < 3; ++d) {
+      for (int k = 0; k < W; ++k) {
+        N[d][k] = c.N[d][k];
+        dN[d][k] = c.dN[d][k];
+      }
+      lowest[d] = c.lowest[d];
+      first[d] = c.first[d];
+      last[d] = c.last[d];
+    }
+    resolve_nodes();
+  }
+
+  void resolve_nodes() {
+    static constexpr int stride[3] = {1, SparseGrid::block_edge, SparseGrid::block_edge * SparseGrid::block_edge};
+    for (int d = 0; d < 3; ++d)
+      for (int k = 0; k < W; ++k) {
+        const int l = lowest[d] + k;  // 0 .. 2*edge-1
+        block_bit[d][k] = (l / SparseGrid::block_edge) << d;
+        node_offset[d][k] = (l % SparseGrid::block_edge) * stride[d];
+      }
   }
 
   // f(node, weight, gradient[3]) for every node of the stencil; gradient in 1/m.
@@ -69,11 +101,29 @@ struct Setup {
   double inv_h;
   const double* half_width;  // 3 per particle, m
   const NodeAverageSums* mean_stress;  // gathered into the force scatter; nullptr for none
+  // GIMP with a StencilCache: read the step's stencils from `read`, or evaluate them and, in a
+  // pass that visits every binned point, store them in `fill`. Both nullptr: evaluate.
+  const GimpStencil* read;
+  GimpStencil* fill;
   // Half-widths of particle p in cells, per axis, in `out`; nullptr for linear shape functions.
   const double* a(std::size_t p, double* out) const {
     if (!half_width) return nullptr;
     for (int d = 0; d < 3; ++d) out[d] = half_width[3 * p + d] * inv_h;
     return out;
+  }
+  // Particle p's stencil in st.
+  template <class Shape>
+  void stencil(NodeStencil<Shape>& st, const Particles& P, std::uint32_t p,
+               const std::array<int, 3>& origin) const {
+    if constexpr (std::is_same_v<Shape, GimpShape>)
+      if (read) {
+        st.load(read[p]);
+        return;
+      }
+    double a_cells[3];
+    st.evaluate(&P.position[3 * p], g, inv_h, a(p, a_cells), origin);
+    if constexpr (std::is_same_v<Shape, GimpShape>)
+      if (fill) st.store(fill[p]);
   }
 };
 
@@ -151,8 +201,7 @@ void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, con
         NodeStencil<Shape> st;
         for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
           const std::uint32_t p = bins.order[k];
-          double a_cells[3];
-          st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+          s.stencil(st, P, p, origin);
           const double m = P.mass[p];
           const double* v = &P.velocity[3 * p];
           const double mv[3] = {m * v[0], m * v[1], m * v[2]};
@@ -190,8 +239,7 @@ template <class Shape, bool Remap, class Blocks>
 void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks,
                         const std::array<int, 3>& origin, const Setup& s, double flip,
                         NodeStencil<Shape>& st) {
-  double a_cells[3];
-  st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+  s.stencil(st, P, p, origin);
   double dv[3] = {0, 0, 0}, vg[3] = {0, 0, 0};
   st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
     for (int d = 0; d < 3; ++d) {
@@ -246,8 +294,7 @@ void gradient_of_block(Particles& P, const ParticleBins& bins, std::uint32_t b, 
   NodeStencil<Shape> st;
   for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
     const std::uint32_t p = bins.order[k];
-    double a_cells[3];
-    st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+    s.stencil(st, P, p, origin);
     double L[9] = {};
     st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
       double v[3];
@@ -293,9 +340,26 @@ void gather_gradient(Particles& P, const ParticleBins& bins, SparseGrid& grid, c
   });
 }
 
+// Without a cache (and for outward_normals, which runs on either field of a contact pair).
 Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
   return {grid.geometry(), 1.0 / grid.geometry().cell_size,
-          c.half_width ? c.half_width->data() : nullptr, c.mean_stress};
+          c.half_width ? c.half_width->data() : nullptr, c.mean_stress, nullptr, nullptr};
+}
+
+// With GIMP and a StencilCache: read it if it is filled; else, if this pass visits every binned
+// point (`visits_all`), fill it as the pass evaluates (finish_pass then marks it filled).
+Setup make_setup(const Particles& P, const SparseGrid& grid, const TransferContext& c, bool visits_all) {
+  Setup s = make_setup(grid, c);
+  if (!c.stencils || c.shape == ShapeFunction::linear) return s;
+  if (c.stencils->valid())
+    s.read = c.stencils->storage(P.size()).data();
+  else if (visits_all)
+    s.fill = c.stencils->storage(P.size()).data();
+  return s;
+}
+
+void finish_pass(const Setup& s, const TransferContext& c) {
+  if (s.fill) c.stencils->mark_valid();
 }
 
 // sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p) over the counted particles of the group.
@@ -310,9 +374,11 @@ void node_average_scatter_impl(const Particles& P, const ParticleBins& bins, Spa
     NodeStencil<Shape> st;
     for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
       const std::uint32_t p = bins.order[k];
-      if (!a.counts(p)) continue;
-      double a_cells[3];
-      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+      if (!a.counts(p)) {
+        if (s.fill) s.stencil(st, P, p, origin);  // the cache holds every point's
+        continue;
+      }
+      s.stencil(st, P, p, origin);
       const double V = P.volume[p], Va = V * a.value[p];
       st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
         double* sum = &sums[slot(n, a.group[p])];
@@ -339,8 +405,7 @@ void node_average_gather_impl(const Particles& P, const ParticleBins& bins, cons
         out[p] = 0.0;
         continue;
       }
-      double a_cells[3];
-      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
+      s.stencil(st, P, p, origin);
       out[p] = gather_average(st, blocks, s.inv_h, sums, slot, a.group[p]);
     }
   });
@@ -391,11 +456,12 @@ void scatter_dispatch(Scatter what, const Particles& P, const ParticleBins& bins
 
 void particles_to_grid(Scatter what, const Particles& particles, const ParticleBins& bins,
                        SparseGrid& grid, const TransferContext& context) {
-  const Setup s = make_setup(grid, context);
+  const Setup s = make_setup(particles, grid, context, true);
   if (context.shape == ShapeFunction::linear)
     scatter_dispatch<LinearShape>(what, particles, bins, grid, s);
   else
     scatter_dispatch<GimpShape>(what, particles, bins, grid, s);
+  finish_pass(s, context);
 }
 
 void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
@@ -408,16 +474,17 @@ void node_average(const Particles& particles, const ParticleBins& bins, SparseGr
 
 void node_average_scatter(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                           const TransferContext& context, const NodeAverageSums& sums) {
-  const Setup s = make_setup(grid, context);
+  const Setup s = make_setup(particles, grid, context, true);
   if (context.shape == ShapeFunction::linear)
     node_average_scatter_impl<LinearShape>(particles, bins, grid, s, sums);
   else
     node_average_scatter_impl<GimpShape>(particles, bins, grid, s, sums);
+  finish_pass(s, context);
 }
 
 void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
                          const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out) {
-  const Setup s = make_setup(grid, context);
+  const Setup s = make_setup(particles, grid, context, false);  // skips the points that do not count
   if (context.shape == ShapeFunction::linear)
     node_average_gather_impl<LinearShape>(particles, bins, grid, s, sums, out);
   else
@@ -436,17 +503,18 @@ void outward_normals(const Particles& particles, const ParticleBins& bins, Spars
 
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                        const TransferContext& context, bool remap) {
-  const Setup s = make_setup(grid, context);
+  const Setup s = make_setup(particles, grid, context, true);
   if (context.shape == ShapeFunction::linear)
     gather_velocity<LinearShape>(particles, bins, grid, s, context.flip, remap);
   else
     gather_velocity<GimpShape>(particles, bins, grid, s, context.flip, remap);
+  finish_pass(s, context);
 }
 
 void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                        const TransferContext& context, NodalVelocity which, const NodeAverageSums* dilatation,
                        std::vector<double>* trace) {
-  const Setup s = make_setup(grid, context);
+  const Setup s = make_setup(particles, grid, context, true);
   const bool linear = context.shape == ShapeFunction::linear;
   switch (which) {
     case NodalVelocity::start:
@@ -468,6 +536,7 @@ void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGri
         gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s, dilatation, trace);
       break;
   }
+  finish_pass(s, context);
 }
 
 }  // namespace hvi::mpm

@@ -1,7 +1,9 @@
 #pragma once
-// Particle <-> grid transfers, the kernels of every MPM step. Weights are recomputed in each pass
-// from the start-of-step positions (cheaper than storing them). Scatters run colour by colour over
-// owner blocks (see particle_bins.hpp); gathers run over owner blocks in any order.
+// Particle <-> grid transfers, the kernels of every MPM step. A point's weights follow from its
+// start-of-step position (and GIMP half-widths); with a StencilCache, GIMP weights are evaluated
+// once and read by every later pass until the cache is invalidated, else each pass recomputes
+// them. Scatters run colour by colour over owner blocks (see particle_bins.hpp); gathers run over
+// owner blocks in any order.
 #include <cstdint>
 #include <vector>
 
@@ -32,6 +34,43 @@ struct NodeAverageSums {
   std::vector<double>* sums = nullptr;
 };
 
+// One point's stencil: the weights N and derivatives dN (in cell units) of its W nodes per axis,
+// its lowest node relative to its owner block's first node, and the nodes of nonzero weight.
+template <int W>
+struct StencilWeights {
+  double N[3][W], dN[3][W];
+  std::int8_t lowest[3];          // per axis, relative to the owner block's first node: 0 .. 2*edge-W
+  std::int8_t first[3], last[3];  // per axis, of 0 .. W-1
+};
+using GimpStencil = StencilWeights<GimpShape::width>;
+static_assert(sizeof(GimpStencil) == 160);  // 18 doubles and 9 bytes, padded to a double
+
+// The GIMP stencils of every point, kept between the passes of one step. A step's passes see the
+// same positions, half-widths and bins from the binning to the domains' stretch, yet without the
+// cache each pass evaluated all 9 weights again: with MUSL and the node average, 5 times a step.
+// Stored, they cost sizeof(GimpStencil) = 160 bytes a point (README, Benchmarks, for what that
+// bought). The solver invalidates the cache whenever the points are binned again or their domains
+// stretch; the first transfer after that which visits every binned point fills it as it
+// evaluates, and the ones after read it. The values are the ones each pass would compute, so
+// results are the same to the bit (tests/mpm/test_transfers.cpp, tests/driver/test_cli.cpp).
+class StencilCache {
+ public:
+  void invalidate() { valid_ = false; }
+  bool valid() const { return valid_; }
+  std::size_t bytes() const { return stencils_.capacity() * sizeof(GimpStencil); }
+  // For the transfers: the stencils, resized to n, and the mark that they are filled.
+  std::vector<GimpStencil>& storage(std::size_t n) {
+    if (stencils_.size() != n) stencils_.resize(n);
+    return stencils_;
+  }
+  const GimpStencil& operator[](std::size_t p) const { return stencils_[p]; }
+  void mark_valid() { valid_ = true; }
+
+ private:
+  std::vector<GimpStencil> stencils_;
+  bool valid_ = false;
+};
+
 struct TransferContext {
   ShapeFunction shape = ShapeFunction::linear;
   const std::vector<double>* half_width = nullptr;  // GIMP particle half-widths, 3 per particle, m
@@ -41,6 +80,9 @@ struct TransferContext {
   // mbar_p - m_p the same pass gathers and adds to the diagonal of each counted particle's
   // stress in the internal force; nullptr for none.
   const NodeAverageSums* mean_stress = nullptr;
+  // GIMP stencils kept between passes; nullptr: every pass evaluates its own. Only for a single
+  // velocity field (the cache holds one stencil per point, on one grid's bins).
+  StencilCache* stencils = nullptr;
 };
 
 enum class Scatter {

@@ -42,6 +42,7 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
                                         : mpm::UpdateScheme::musl;
   settings.flip = g.flip;
   settings.dilatation = g.dilatation == "node-average" ? mpm::Dilatation::node_average : mpm::Dilatation::particle;
+  settings.stencil_cache = g.stencil_cache;
   settings.cfl = g.cfl;
   if (scene.contact) {
     mpm::ContactSettings contact;

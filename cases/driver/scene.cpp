@@ -61,6 +61,7 @@ void read_grid(const toml::table& t, Scene& s, Checker& c) {
   g.scheme = text(t, "scheme");
   g.flip = number(t, "flip");
   g.dilatation = text(t, "dilatation");
+  g.stencil_cache = t["stencil_cache"].value<bool>().value();
   g.cfl = number(t, "cfl");
   g.max_time_step = optional_number(t, "max_time_step");
   for (int d = 0; d < 3; ++d) {

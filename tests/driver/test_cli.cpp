@@ -121,6 +121,22 @@ TEST(Cli, OutputIsBitwiseIdenticalForOneAndTwoThreads) {
   expect_same_output(one, two);
 }
 
+// grid.stencil_cache keeps each point's GIMP weights between a step's transfers: the output is
+// the same bytes with it and without it, for MUSL with the node average (one evaluation a step
+// instead of five) and for USF, whose domains stretch between its transfers (the cache then
+// refills mid-step).
+TEST(Cli, OutputIsBitwiseIdenticalWithAndWithoutTheStencilCache) {
+  for (const std::string scheme : {"musl", "usf"}) {
+    SCOPED_TRACE(scheme);
+    const std::string set = " --threads 2 --set grid.shape_function=cpgimp --set grid.dilatation=node-average"
+                            " --set grid.scheme=" + scheme;
+    const fs::path on = scratch("cache_on_" + scheme), off = scratch("cache_off_" + scheme);
+    ASSERT_EQ(run("run " + scene + " --out " + on.string() + set), 0);
+    ASSERT_EQ(run("run " + scene + " --out " + off.string() + set + " --set grid.stencil_cache=false"), 0);
+    expect_same_output(on, off);
+  }
+}
+
 // With hydrocode materials the models declare their fields (plastic strain, damage, failed, ...)
 // once they run; a resumed run declares them from the checkpoint in the same order, so its
 // snapshot files are byte-identical too, not only their datasets.
