@@ -158,6 +158,7 @@ void Solver::step(double max_dt) {
       couple(GridStage::remapped);
       update_remapped_grid();
       compute_velocity_gradient(NodalVelocity::remapped);
+      stretch_particle_domains();
       update_stress();
       break;
     case UpdateScheme::usl:
@@ -167,6 +168,7 @@ void Solver::step(double max_dt) {
       update_grid(true, true);
       grid_to_particles(false);
       compute_velocity_gradient(NodalVelocity::end);
+      stretch_particle_domains();
       update_stress();
       break;
     case UpdateScheme::usf:
@@ -179,6 +181,10 @@ void Solver::step(double max_dt) {
       couple(GridStage::force);
       update_grid(false, true);
       grid_to_particles(false);
+      // Not before: the bins (each point's owner block, the colours) hold for the domains the
+      // step began with, and a domain grown mid-step can reach a node below its owner block's,
+      // which the force scatter would then write outside its colour's blocks.
+      stretch_particle_domains();
       break;
   }
   update_positions();
@@ -280,7 +286,6 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
       volumetric->average_dilatation(particles_, bins, grid, transfer_context());
     }
   });
-  if (settings_.shape == ShapeFunction::cpgimp) stretch_particle_domains();
 }
 
 // cpGIMP: the axis-aligned domain follows the stretch along each axis, a_d <- a_d (1 + dt L_dd),
@@ -289,6 +294,7 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
 // noise: a 10 km/s impact then gained 59% energy (3.9% with the floor), and the floor also puts
 // the Taylor-bar foot at 11.34 mm instead of 11.43 (benchmark 11.18-11.22).
 void Solver::stretch_particle_domains() {
+  if (settings_.shape != ShapeFunction::cpgimp) return;
   auto t = timer_.scope("stretch particle domains");
   stencils_.invalidate();
   double* a = half_width_->data();

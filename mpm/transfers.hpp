@@ -60,6 +60,9 @@ class StencilCache {
   std::size_t bytes() const { return stencils_.capacity() * sizeof(GimpStencil); }
   // For the transfers: the stencils, resized to n, and the mark that they are filled.
   std::vector<GimpStencil>& storage(std::size_t n) {
+    // To exactly n, as Particles::resize: a hybrid's growing zone adds points a tenth at a time,
+    // and a vector grown past its capacity would double it.
+    if (n > stencils_.capacity()) stencils_.reserve(n);
     if (stencils_.size() != n) stencils_.resize(n);
     return stencils_;
   }
