@@ -123,8 +123,9 @@ TEST(Cli, OutputIsBitwiseIdenticalForOneAndTwoThreads) {
 
 // grid.stencil_cache keeps each point's GIMP weights between a step's transfers: the output is
 // the same bytes with it and without it, for MUSL with the node average (one evaluation a step
-// instead of five) and for USF, whose domains stretch between its transfers (the cache then
-// refills mid-step).
+// instead of five) and for USF, which scatters mass and force in separate passes. On 2 threads:
+// USF with cpGIMP and the node average differed from run to run while it stretched the domains
+// between its transfers (a domain outgrowing its owner block's stencil wrote outside its colour).
 TEST(Cli, OutputIsBitwiseIdenticalWithAndWithoutTheStencilCache) {
   for (const std::string scheme : {"musl", "usf"}) {
     SCOPED_TRACE(scheme);
