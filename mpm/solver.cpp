@@ -158,7 +158,6 @@ void Solver::step(double max_dt) {
       couple(GridStage::remapped);
       update_remapped_grid();
       compute_velocity_gradient(NodalVelocity::remapped);
-      stretch_particle_domains();
       update_stress();
       break;
     case UpdateScheme::usl:
@@ -168,7 +167,6 @@ void Solver::step(double max_dt) {
       update_grid(true, true);
       grid_to_particles(false);
       compute_velocity_gradient(NodalVelocity::end);
-      stretch_particle_domains();
       update_stress();
       break;
     case UpdateScheme::usf:
@@ -181,12 +179,13 @@ void Solver::step(double max_dt) {
       couple(GridStage::force);
       update_grid(false, true);
       grid_to_particles(false);
-      // Not before: the bins (each point's owner block, the colours) hold for the domains the
-      // step began with, and a domain grown mid-step can reach a node below its owner block's,
-      // which the force scatter would then write outside its colour's blocks.
-      stretch_particle_domains();
       break;
   }
+  // After every transfer of the step: the bins (each point's owner block, the colours) hold for
+  // the domains the step began with, and a domain grown mid-step can reach a node below its owner
+  // block's, which a later scatter would write outside its colour's blocks (USF's force scatter
+  // did, until this ran here). The stress update reads L, not the domains.
+  stretch_particle_domains();
   update_positions();
   reflect_at_symmetry_planes();
   state_.time += dt_;

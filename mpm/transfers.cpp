@@ -352,7 +352,7 @@ Setup make_setup(const Particles& P, const SparseGrid& grid, const TransferConte
   Setup s = make_setup(grid, c);
   if (!c.stencils || c.shape == ShapeFunction::linear) return s;
   if (c.stencils->valid())
-    s.read = c.stencils->storage(P.size()).data();
+    s.read = c.stencils->filled();
   else if (visits_all)
     s.fill = c.stencils->storage(P.size()).data();
   return s;

@@ -66,7 +66,7 @@ class StencilCache {
     if (stencils_.size() != n) stencils_.resize(n);
     return stencils_;
   }
-  const GimpStencil& operator[](std::size_t p) const { return stencils_[p]; }
+  const GimpStencil* filled() const { return valid_ ? stencils_.data() : nullptr; }
   void mark_valid() { valid_ = true; }
 
  private:
