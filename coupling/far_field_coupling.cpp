@@ -79,10 +79,12 @@ void FarFieldCoupling::request_blocks(std::vector<std::uint64_t>& keys) const {
   for (const Tie& t : ties_) keys.push_back(mpm::SparseGrid::key_of_node(t.grid[0], t.grid[1], t.grid[2]));
 }
 
-void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double, double) {
+void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double, double dt) {
   const auto m = far_field_.lumped_mass();
   const auto v = far_field_.velocity();
-  if (stage == mpm::GridStage::force) far_field_.internal_force(force_);
+  // The displacement moved over the last step, of (nearly: the CFL step changes by a small
+  // fraction a step) this step's dt: the strain rate of rate-dependent J2 facesheets.
+  if (stage == mpm::GridStage::force) far_field_.internal_force(force_, dt);
   for (const Tie& t : ties_) {
     mpm::GridNode* node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
     const double wm = t.weight * m[t.node];

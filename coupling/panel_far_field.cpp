@@ -84,11 +84,11 @@ fem::LayeredMesh panel_far_field_mesh(const geometry::HoneycombPanel& panel,
   }
   m.layers = {
       {"rear", rear.lower[2], rear.upper[2], spec.face_elements, iso(spec.rear), spec.rear.density,
-       spec.rear.hardening, std::nullopt, spec.rear.damage},
+       spec.rear.hardening, std::nullopt, spec.rear.damage, spec.strain_rate && spec.rear.hardening},
       {"core", core.lower[2], core.upper[2], spec.core_elements, core_moduli, spec.core_wall.density * solidity,
        std::nullopt, core_yield, std::nullopt},
       {"front", front.lower[2], front.upper[2], spec.face_elements, iso(spec.front), spec.front.density,
-       spec.front.hardening, std::nullopt, spec.front.damage}};
+       spec.front.hardening, std::nullopt, spec.front.damage, spec.strain_rate && spec.front.hardening}};
   return m;
 }
 

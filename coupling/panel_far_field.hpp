@@ -40,6 +40,9 @@ struct PanelFarFieldSpec {
   int core_elements = 8;         // through the core height
   int face_elements = 1;         // through each facesheet
   bool finite_strain = false;    // Green-Lagrange kinematics (fem/far_field.hpp); false: small strain
+  // J2 facesheets (with `hardening`) whose yield stress takes the rate factor of their strain rate
+  // (fem::Layer::strain_rate); false: the reference rate.
+  bool strain_rate = false;
   // The core's out-of-plane stresses capped where its walls yield (fem/core_yield.hpp, sigma_ys
   // = core_wall.hardening's A); false: the core stays elastic.
   bool yielding_core = false;

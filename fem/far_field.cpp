@@ -131,9 +131,14 @@ struct FarField::Impl {
   // Plasticity, kept only when a layer names it. lane_layer[W cell + lane] is the layer of each
   // lane of each cell batch (-1: an empty lane); a batch with a plastic lane has a slot in
   // `plastic` of n_q * W * state_size values: per quadrature point and lane eps_p (Voigt) and
-  // alpha, and with a failing core or facesheets an eighth, their damage D (0 in the other lanes).
+  // alpha, with a failing core or facesheets an eighth, their damage D (0 in the other lanes), and
+  // with a rate-dependent layer six more from `strain_slot` on, the strain E (Voigt) of the last
+  // force evaluation, whose change over `rate_dt` is the point's strain rate.
   static constexpr unsigned W = VA::size();
   int state_size = 7;
+  bool damage_slot = false;
+  int strain_slot = -1;
+  double rate_dt = 0.0;
   std::vector<int> lane_layer, plastic_slot;
   std::vector<double> plastic;
   mutable std::vector<double> batch_sum;  // per cell batch: its share of a sum, added in order
@@ -198,7 +203,7 @@ struct FarField::Impl {
 
   // The stress C : (E - E_p) of a plastic batch's lanes returned to the yield surface, their state
   // and plastic work (into batch_sum) committed.
-  void return_to_yield(unsigned cell, unsigned q, VA jxw, Tensor<2, dim, VA>& sigma) {
+  void return_to_yield(unsigned cell, unsigned q, VA jxw, const Tensor<2, dim, VA>& E, Tensor<2, dim, VA>& sigma) {
     const auto& C = batch_stiffness[cell];
     for (unsigned lane = 0; lane < W; ++lane) {
       if (!lane_is_plastic(cell, lane)) continue;
@@ -224,9 +229,20 @@ struct FarField::Impl {
         // C[8] = C66 = mu of the isotropic layer, (C11 + 2 C12) / 3 its bulk modulus K.
         const double mu = C[8][lane];
         if (L.failure) old.damage = st[7];
+        StrainRate rate;
+        if (L.strain_rate) {
+          double* last = st + strain_slot;
+          Sym de;
+          for (int k = 0; k < 6; ++k) {
+            const double e = E[voigt[k][0]][voigt[k][1]][lane];
+            de[k] = e - last[k];
+            last[k] = e;
+          }
+          if (rate_dt > 0.0) rate = {equivalent_strain_rate(de, rate_dt), rate_dt};
+        }
         const J2Update r = L.failure ? j2_return(trial, old, mu, (C[0][lane] + 2.0 * C[3][lane]) / 3.0,
-                                                 *L.plasticity, *L.failure)
-                                     : j2_return(trial, old, mu, *L.plasticity);
+                                                 *L.plasticity, *L.failure, rate)
+                                     : j2_return(trial, old, mu, *L.plasticity, rate);
         stress = r.stress, plastic_strain = r.state.plastic_strain, accumulated = r.state.alpha, work = r.plastic_work;
         if (L.failure) st[7] = r.state.damage;
       }
@@ -256,7 +272,7 @@ struct FarField::Impl {
       for (unsigned int q = 0; q < phi.n_q_points; ++q) {
         const Tensor<2, dim, VA> H = phi.get_gradient(q), E = total_strain(H);
         Tensor<2, dim, VA> S = orthotropic_stress(C, elastic_strain(cell, q, E));
-        if (plastic_batch) return_to_yield(cell, q, phi.JxW(q), S);
+        if (plastic_batch) return_to_yield(cell, q, phi.JxW(q), E, S);
         if (!spec.finite_strain) {
           phi.submit_gradient(S, q);
           continue;
@@ -431,6 +447,8 @@ void FarField::Impl::build_mesh() {
       throw std::invalid_argument("far field: layer '" + L.name + "' is plastic but not isotropic (J2 needs an isotropic layer)");
     if (L.plasticity && L.core_yield)
       throw std::invalid_argument("far field: layer '" + L.name + "' names both J2 plasticity and core yield");
+    if (L.strain_rate && !L.plasticity)
+      throw std::invalid_argument("far field: layer '" + L.name + "' takes the strain rate but has no J2 plasticity");
     if (L.failure && !L.plasticity)
       throw std::invalid_argument("far field: layer '" + L.name + "' names failure without J2 plasticity (its damage grows with eps_p)");
   }
@@ -606,8 +624,14 @@ void FarField::Impl::setup_plasticity() {
       }
   }
   state_size = 7;
+  damage_slot = false;
+  strain_slot = -1;
   for (const Layer& L : spec.layers)
-    if ((L.core_yield && L.core_yield->failure) || L.failure) state_size = 8;
+    if ((L.core_yield && L.core_yield->failure) || L.failure) damage_slot = true;
+  if (damage_slot) state_size = 8;
+  for (const Layer& L : spec.layers)
+    if (L.plasticity && L.strain_rate) strain_slot = state_size;
+  if (strain_slot >= 0) state_size += 6;
   plastic.assign(static_cast<std::size_t>(slots) * n_q * W * state_size, 0.0);
   if (slots == 0) {  // nothing plastic: keep no per-batch tables either
     lane_layer = {};
@@ -700,14 +724,16 @@ void FarField::apply_stiffness(std::span<const double> u, std::span<double> Ku) 
   std::copy(impl_->work_out.begin(), impl_->work_out.end(), Ku.begin());
 }
 
-void FarField::internal_force(std::span<double> force) {
+void FarField::internal_force(std::span<double> force, double dt) {
   if (force.size() != impl_->u.size()) throw std::invalid_argument("far field: force size");
+  impl_->rate_dt = dt;
   impl_->internal(impl_->u, impl_->work_out);
   for (std::size_t i = 0; i < force.size(); ++i) force[i] = -impl_->work_out[i];
 }
 
 void FarField::step(double dt, std::span<const double> external) {
   auto& I = *impl_;
+  I.rate_dt = dt;
   I.internal(I.u, I.work_out);  // K u when elastic
   const std::size_t nodes = I.mass.size();
   for (std::size_t a = 0; a < nodes; ++a)
@@ -805,7 +831,7 @@ std::vector<FarField::PointSample> FarField::sample(std::span<const double> poin
         if (voigt[k][0] != voigt[k][1]) eps[voigt[k][1]][voigt[k][0]] -= st[k];
       }
       r.plastic_strain = st[6];
-      r.damage = I.state_size > 7 ? st[7] : 0.0;
+      r.damage = I.damage_slot ? st[7] : 0.0;
     }
     const Tensor<2, dim> sigma = orthotropic_stress(I.layer_stiffness[r.layer], eps);
     for (int k = 0; k < 6; ++k) {
@@ -876,7 +902,7 @@ double max_accumulated(const Impl& I, bool core) {
 // slot 7, >= 1): each cell's volume times the fraction of its points torn.
 template <class Impl>
 double failed_volume(const Impl& I, bool core) {
-  if (I.state_size < 8) return 0.0;
+  if (!I.damage_slot) return 0.0;
   double v = 0.0;
   for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
     for (unsigned lane = 0; lane < Impl::W; ++lane) {
@@ -894,7 +920,7 @@ double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_
 std::vector<double> FarField::damaged_cell_centres(double damage) const {
   const auto& I = *impl_;
   std::vector<double> centres;
-  if (I.state_size < 8) return centres;  // no failing layer: no damage slot
+  if (!I.damage_slot) return centres;  // no failing layer: no damage slot
   for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
     for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
       if (!I.lane_is_plastic(cell, lane)) continue;  // elastic, or removed (its layer is -1)

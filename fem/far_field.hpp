@@ -54,6 +54,11 @@ struct Layer {
   // With `plasticity`: the layer tears where this Johnson-Cook damage reaches 1 (fem/j2_plasticity.hpp);
   // none: it yields without limit.
   std::optional<mpm::JohnsonCookDamage> failure;
+  // With `plasticity`: the yield stress takes eq. (1)'s rate factor at each quadrature point's
+  // equivalent deviatoric strain rate, the change of its strain since the last force evaluation
+  // over the step (fem/j2_plasticity.hpp; six more values of state per point); false: the
+  // reference rate, factor 1.
+  bool strain_rate = false;
 };
 
 struct LayeredMesh {
@@ -105,8 +110,10 @@ class FarField {
 
   // f = -int P . grad N dV at the current displacement, 3 per node (N); `force` must hold
   // 3 * node_count(). Elastic with small strain: f = -K u. With plastic layers the stress is
-  // returned to the yield surface and the plastic state committed: call it once per step.
-  void internal_force(std::span<double> force);
+  // returned to the yield surface and the plastic state committed: call it once per step, with
+  // `dt` the step over which the displacement moved since the last call, the time a layer with
+  // `strain_rate` divides its strain's change by (0: the reference rate, for static tests).
+  void internal_force(std::span<double> force, double dt = 0.0);
   // The linearised elastic K (at u = 0) applied to any nodal vector (N): for tests and energy.
   void apply_stiffness(std::span<const double> u, std::span<double> Ku) const;
 

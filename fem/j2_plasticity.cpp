@@ -5,14 +5,24 @@
 
 namespace hvi::fem {
 
-J2Update j2_return(const Sym& trial, const J2State& old, double mu, const mpm::JohnsonCookStrength& hardening) {
+double equivalent_strain_rate(const Sym& de, double dt) {
+  const double mean = (de[0] + de[1] + de[2]) / 3.0;
+  double dd = 0.0;
+  for (int i = 0; i < 3; ++i) dd += (de[i] - mean) * (de[i] - mean);
+  for (int i = 3; i < 6; ++i) dd += 2.0 * de[i] * de[i];
+  return std::sqrt(2.0 / 3.0 * dd) / dt;
+}
+
+J2Update j2_return(const Sym& trial, const J2State& old, double mu, const mpm::JohnsonCookStrength& hardening,
+                   const StrainRate& rate) {
   J2Update r{trial, old, 0.0};
   const double p = (trial[0] + trial[1] + trial[2]) / 3.0;
   Sym s = trial;
   for (int i = 0; i < 3; ++i) s[i] -= p;
   const double ss = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
   const double q_trial = std::sqrt(1.5 * ss);
-  const double dgamma = mpm::radial_return(hardening, q_trial, mu, old.alpha, 1.0, 1.0);
+  const double k = rate.dt > 0.0 ? hardening.rate_factor(rate.equivalent) : 1.0;
+  const double dgamma = mpm::radial_return(hardening, q_trial, mu, old.alpha, k, 1.0);
   if (dgamma <= 0.0) return r;
   const double scale = 1.0 - 3.0 * mu * dgamma / q_trial;
   for (int i = 0; i < 6; ++i) {
@@ -50,19 +60,20 @@ void tear(J2Update& r, double mu, double K, bool tearing) {
 }  // namespace
 
 J2Update j2_return(const Sym& trial, const J2State& old, double mu, double K, const mpm::JohnsonCookStrength& hardening,
-                   const mpm::JohnsonCookDamage& damage) {
+                   const mpm::JohnsonCookDamage& damage, const StrainRate& rate) {
   if (old.damage >= 1.0) {  // torn before this step
     J2Update r{trial, old, 0.0};
     tear(r, mu, K, false);
     return r;
   }
-  J2Update r = j2_return(trial, old, mu, hardening);
+  J2Update r = j2_return(trial, old, mu, hardening, rate);
   const double dgamma = r.state.alpha - old.alpha;
   if (dgamma <= 0.0) return r;
   // Triaxiality at the returned stress, whose q is the yield stress sigma_y(alpha_n+1) > 0.
   const double p = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
   const double q = r.plastic_work / dgamma;
-  r.state.damage += dgamma / damage.failure_strain(p / q, 0.0, 0.0);
+  const double plastic_rate = rate.dt > 0.0 ? dgamma / rate.dt : 0.0;
+  r.state.damage += dgamma / damage.failure_strain(p / q, plastic_rate, 0.0);
   if (r.state.damage >= 1.0) tear(r, mu, K, true);
   return r;
 }

@@ -86,6 +86,7 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
   spec.core_elements = f.core_elements;
   spec.face_elements = f.face_elements;
   spec.finite_strain = f.finite_strain;
+  spec.strain_rate = f.strain_rate;
   spec.yielding_core = f.yielding_core;
   spec.failing_core = f.failing_core;
   plastic_faces_ = f.plastic_faces;
@@ -117,11 +118,12 @@ void Hybrid::record_reference_positions(mpm::Solver& solver) const {
 }
 
 std::string Hybrid::describe() const {
-  return fmt::format("far field: {} nodes, {} elements (trilinear{}{}{}), {} tied to grid nodes ({} exactly), {} with "
+  return fmt::format("far field: {} nodes, {} elements (trilinear{}{}{}{}), {} tied to grid nodes ({} exactly), {} with "
                      "conditions; stable step {:.4g} s; {:.1f} MB",
                      far_field_->node_count(), far_field_->cell_count(),
                      far_field_->finite_strain() ? ", finite strain" : "",
                      failing_faces_ ? ", failing J2 facesheets" : plastic_faces_ ? ", J2 facesheets" : "",
+                     spec_.strain_rate ? " at their strain rate" : "",
                      failing_core_ ? ", failing core" : yielding_core_ ? ", yielding core" : "",
                      coupling_->tied_node_count(),
                      coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),

@@ -133,6 +133,7 @@ struct FarFieldSettings {
   bool plastic_faces = false;  // plasticity = "j2" or "failing": the facesheets yield (their Johnson-Cook A, B, n)
   bool failing_faces = false;  // plasticity = "failing": and tear where their Johnson-Cook damage reaches 1
   bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
+  bool strain_rate = false;    // strain_rate = "johnson-cook": J2 facesheets' yield takes eq. (1)'s rate factor
   bool yielding_core = false;  // core = "yielding" or "failing": its out-of-plane stresses capped (walls' Johnson-Cook A)
   bool failing_core = false;   // core = "failing": and dropped to zero where the walls' Johnson-Cook damage reaches 1
   // [far_field.zone.grow]: the zone grows over the far field where the panel's damage reaches its

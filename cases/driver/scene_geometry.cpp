@@ -262,6 +262,11 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.failing_faces = text(t, "plasticity") == "failing";
   f.plastic_faces = f.failing_faces || text(t, "plasticity") == "j2";
   f.finite_strain = text(t, "kinematics") == "finite";
+  f.strain_rate = text(t, "strain_rate") == "johnson-cook";
+  if (f.strain_rate && !f.plastic_faces)
+    error("strain_rate", "\"johnson-cook\" sets the rate factor of the facesheets' J2 yield stress; "
+                         "plasticity = \"none\" has none: expected plasticity = \"j2\" or \"failing\", "
+                         "or strain_rate = \"reference\"");
   f.failing_core = text(t, "core") == "failing";
   f.yielding_core = f.failing_core || text(t, "core") == "yielding";
   // J2 facesheets and a yielding core take their materials' Johnson-Cook strength (hardening, or

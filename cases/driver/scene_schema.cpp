@@ -276,13 +276,18 @@ TableSpec far_field_table() {
       .integer("face_elements", closed(1, 8), 1, "Elements through each facesheet")
       .choice("plasticity", {"none", "j2", "failing"}, "none",
               "The far field's facesheets: elastic; J2 plasticity hardening as their materials' "
-              "Johnson-Cook A + B eps_p^n (rate and thermal factors 1); or failing, J2 and torn (only "
+              "Johnson-Cook A + B eps_p^n (thermal factor 1, rate factor as `strain_rate`); or failing, J2 and torn (only "
               "compressive pressure kept) where their Johnson-Cook damage reaches 1; the core: see `core`")
       .choice("core", {"elastic", "yielding", "failing"}, "elastic",
               "The far field's homogenised core: elastic; yielding, its out-of-plane normal and "
               "transverse shear stresses capped where its walls yield (their Johnson-Cook A; "
               "fem/core_yield.hpp), so the facesheets can pull away from a crushed or torn core; or "
               "failing, capped and dropped to zero where the walls' Johnson-Cook damage reaches 1")
+      .choice("strain_rate", {"reference", "johnson-cook"}, "reference",
+              "The strain rate of the J2 facesheets' yield stress: the reference rate (eq. 1's rate "
+              "factor 1 + C ln(epsdot*) at 1); or johnson-cook, that factor at each quadrature "
+              "point's equivalent deviatoric strain rate, as the material points take it (and eq. 3's "
+              "D4 factor at the plastic strain rate in failing facesheets)")
       .choice("kinematics", {"small", "finite"}, "small",
               "The far field's strain: small (linearised, sigma = C eps) or finite (total Lagrangian "
               "Green-Lagrange strain E, S = C E, P = F S: rotations of any size give no stress)")

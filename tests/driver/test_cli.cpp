@@ -373,6 +373,25 @@ TEST(Cli, HybridWithPlasticFacesheetsBalancesEnergyAndResumesBitwise) {
   EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("equivalent_plastic_strain"), std::string::npos);
 }
 
+// The same J2 hybrid with the facesheets' yield at their strain rate (far_field.strain_rate =
+// "johnson-cook"; Al6061's C = 0.015): the strain each quadrature point had at the last step is
+// state, in the checkpoints, so a resumed run and a one-thread run repeat the two-thread run byte
+// for byte; the balance holds to the same 0.5%; and the far field, its yield raised by the rate
+// factor (1.07-1.14 at 1e2-1e4 /s), yields less than at the reference rate.
+TEST(Cli, HybridWithRateDependentFacesheetsBalancesEnergyAndResumesBitwise) {
+  const std::string j2 = " --set far_field.plasticity=j2 --set material.aluminium.library=Al6061"
+                         " --set material.aluminium.strength=johnson-cook";
+  const fs::path rate = expect_hybrid_balances_and_repeats_bitwise(j2 + " --set far_field.strain_rate=johnson-cook",
+                                                                  "hybrid_j2_rate");
+  const fs::path reference = scratch("hybrid_j2_reference");
+  ASSERT_EQ(run("run " + hybrid + " --out " + reference.string() + " --threads 2" + j2), 0);
+  const double alpha = summary_number(rate, "far_field_max_plastic_strain");
+  const double alpha_reference = summary_number(reference, "far_field_max_plastic_strain");
+  EXPECT_GT(alpha, 1e-4);  // it yields...
+  EXPECT_LT(alpha, alpha_reference);  // ...less than at the reference rate
+  EXPECT_LT(summary_number(rate, "far_field_plastic_work"), summary_number(reference, "far_field_plastic_work"));
+}
+
 // The same J2 hybrid with finite-strain kinematics in the far field (far_field.kinematics =
 // "finite"): the energy balance holds to the same 0.5% (Saint Venant-Kirchhoff's strain energy is
 // exact, so the far field adds no error of its own), the momentum exactly, and one thread and a

@@ -155,6 +155,22 @@ TEST(SceneFarField, PlasticFacesheetsOnlyWhenNamed) {
   EXPECT_EQ(s.resolved["far_field"]["plasticity"].value_or(std::string{}), "j2");
 }
 
+// The facesheets' yield takes the rate factor only when named, and only J2 facesheets have one.
+TEST(SceneFarField, StrainRateOnlyWhenNamedAndOnlyForJ2Facesheets) {
+  const Scene small = parse_scene(small_hybrid(), "small_hybrid.toml");
+  EXPECT_FALSE(small.far_field->strain_rate);
+  EXPECT_EQ(small.resolved["far_field"]["strain_rate"].value_or(std::string{}), "reference");
+  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml",
+                              {"far_field.plasticity=j2", "far_field.strain_rate=johnson-cook",
+                               "material.aluminium.library=Al6061", "material.aluminium.strength=johnson-cook"});
+  EXPECT_TRUE(s.far_field->strain_rate);
+  EXPECT_EQ(s.resolved["far_field"]["strain_rate"].value_or(std::string{}), "johnson-cook");
+  Diagnostic d = error_for({"far_field.strain_rate=johnson-cook"}, "far_field.strain_rate");
+  EXPECT_NE(d.message.find("plasticity = \"none\" has none"), std::string::npos) << d.message;
+  d = error_for({"far_field.strain_rate=plastic"}, "far_field.strain_rate");
+  EXPECT_NE(d.message.find("johnson-cook"), std::string::npos) << d.message;
+}
+
 TEST(SceneFarField, FiniteStrainOnlyWhenNamed) {
   const Scene small = parse_scene(small_hybrid(), "small_hybrid.toml");
   EXPECT_FALSE(small.far_field->finite_strain);

@@ -80,15 +80,17 @@ inline std::array<double, 3> face_force(const std::vector<double>& force, const 
 //   s_xx = 2 mu (2e/3 - alpha),  s_yy = s_zz = 2 mu (alpha/2 - e/3),  q = 2 mu |e - 3/2 alpha|,
 // and on loading the consistency condition 2 mu (e - 3/2 alpha) = A + B alpha^n fixes alpha
 // (solved here by bisection, independently of the code's Newton iteration).
+// With a rate factor k (eq. 1's 1 + C ln epsdot*) the yield stress is k (A + B alpha^n).
 struct Uniaxial {
   double mu, K;
   mpm::JohnsonCookStrength jc;
+  double k = 1.0;
   double alpha_on_loading(double e) const {
-    if (2 * mu * e <= jc.A) return 0.0;
+    if (2 * mu * e <= k * jc.A) return 0.0;
     double lo = 0, hi = e / 1.5;
     for (int i = 0; i < 200; ++i) {
       const double a = 0.5 * (lo + hi);
-      (2 * mu * (e - 1.5 * a) > jc.hardening(a) ? lo : hi) = a;
+      (2 * mu * (e - 1.5 * a) > k * jc.hardening(a) ? lo : hi) = a;
     }
     return 0.5 * (lo + hi);
   }
