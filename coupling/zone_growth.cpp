@@ -130,11 +130,12 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
   }
 
   // 2. The far field gives up the zone's cells; its losses of energy and momentum.
-  const double energy_before = far_field.kinetic_energy() + far_field.strain_energy();
+  const double kinetic_before = far_field.kinetic_energy(), strain_before = far_field.strain_energy();
   const auto momentum_before = far_field.momentum();
   report.cells = far_field.remove_cells(band.zone);
   coupling.retie(band);
-  report.far_field_energy = energy_before - far_field.kinetic_energy() - far_field.strain_energy();
+  report.far_field_kinetic = kinetic_before - far_field.kinetic_energy();
+  report.far_field_energy = report.far_field_kinetic + strain_before - far_field.strain_energy();
   const auto momentum_after = far_field.momentum();
 
   // 1. The new points, from the samples.
@@ -219,6 +220,7 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
       P.velocity[3 * p + d] += dv[d];
       v2 += P.velocity[3 * p + d] * P.velocity[3 * p + d];
     }
+    report.point_kinetic += 0.5 * P.mass[p] * v2;
     report.point_energy += P.mass[p] * (0.5 * v2 + P.internal_energy[p]);
   }
 

@@ -122,6 +122,8 @@ struct TakeoverReport {
   std::int64_t first_id = 0;      // the new points' ids: first_id + k for NewPoints' point k
   double far_field_energy = 0.0;  // the far field's loss, J
   double point_energy = 0.0;      // what the new points hold, J
+  double far_field_kinetic = 0.0;  // the kinetic part of far_field_energy, J
+  double point_kinetic = 0.0;      // the kinetic part of point_energy, J
   double momentum_correction = 0.0;  // |dv| of step 3, m/s
 };
 

@@ -4,7 +4,8 @@ or the median of a field over its intact points, grouped by where each point sta
 snapshot time.
 
   failure_history.py RUN --body NAME [--by radius|layer|height] [--bin "0.5 mm"] [--radius "4 mm"]
-                         [--axis "X,Y"] [--quantity failed|outward|velocity_z|volume_ratio|pressure|principal]
+                         [--axis "X,Y"]
+                         [--quantity failed|outward|velocity_z|volume_ratio|pressure|principal|plastic_strain]
 
 Each of the body's points is followed by id from the first snapshot and put in a group. In a
 growing hybrid (snapshots with `reference_position`) the body gains points as the zone takes the
@@ -22,7 +23,9 @@ failed at a snapshot if its `failed` field is non-zero there (failed or eroded) 
 longer in the model (it left the grid). Any other quantity is the median over the group's intact
 points (NaN when none is left): outward, how far a point has moved away from the axis since the
 first snapshot (m); velocity_z (m/s); volume_ratio V/V0; pressure (Pa, compression positive);
-principal, the largest principal Cauchy stress (Pa, tension positive). Output: CSV on standard
+principal, the largest principal Cauchy stress (Pa, tension positive); plastic_strain, the
+equivalent plastic strain of Johnson-Cook strength (a taken-over point starts from the far
+field's). Output: CSV on standard
 output, one row per snapshot (time in s, then one value per group, its column named after the
 group in mm); on standard error how many points each group holds.
 """
@@ -160,7 +163,8 @@ def main(argv=None):
                         help="group by (default radius)")
     parser.add_argument("--bin", default="0.5 mm", help='radial or height bin width (default "0.5 mm")')
     parser.add_argument("--quantity", default="failed",
-                        choices=["failed", "outward", "velocity_z", "volume_ratio", "pressure", "principal"],
+                        choices=["failed", "outward", "velocity_z", "volume_ratio", "pressure", "principal",
+                                 "plastic_strain"],
                         help="fraction failed (default) or the median of a field over intact points")
     parser.add_argument("--radius", help="outer radius of the groups (default: 8 bins)")
     parser.add_argument("--axis", default="0 mm,0 mm", help='impact axis "X,Y" (default "0 mm,0 mm")')

@@ -386,9 +386,11 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
           probes->zone_grew(s, r->first_id);
           const auto& z = hybrid->zone();
           fmt::print("  step {}, t = {:.6g} s: the MPM zone grew to [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm: {} points "
-                     "took over {} far-field elements; energy not carried over {:.3g} J of {:.3g} J\n",
+                     "took over {} far-field elements; energy not carried over {:.3g} J of {:.3g} J (kinetic "
+                     "{:.3g} J of {:.3g} J)\n",
                      s.step_count(), s.time(), 1e3 * z[0], 1e3 * z[2], 1e3 * z[1], 1e3 * z[3], r->points, r->cells,
-                     r->far_field_energy - r->point_energy, r->far_field_energy);
+                     r->far_field_energy - r->point_energy, r->far_field_energy,
+                     r->far_field_kinetic - r->point_kinetic, r->far_field_kinetic);
         }
       }
       const bool last = s.time() >= end * (1 - 1e-12);

@@ -19,14 +19,15 @@ import failure_history  # noqa: E402
 
 def write_snapshot(path, time, ids, body, position, failed, reference=None):
     """Besides the given fields, each point's state is set by its id: velocity_z = -id m/s,
-    volume_ratio = 1 + id / 1000, pressure = id MPa, and a stress of that pressure plus an xy shear
-    of 2 MPa, so its largest principal stress is (2 - id) MPa."""
+    volume_ratio = 1 + id / 1000, pressure = id MPa, plastic_strain = id / 100, and a stress of that
+    pressure plus an xy shear of 2 MPa, so its largest principal stress is (2 - id) MPa."""
     with h5py.File(path, "w") as f:
         f.attrs["time"] = time
         f["id"], f["body"], f["position"], f["failed"] = ids, body, position, failed
         f["velocity"] = np.stack([np.zeros(ids.size), np.zeros(ids.size), -ids.astype(float)], axis=1)
         f["volume_ratio"] = 1.0 + ids / 1000.0
         f["pressure"] = ids * 1e6
+        f["plastic_strain"] = ids / 100.0
         stress = np.zeros((ids.size, 6))  # xx xy xz yy yz zz
         stress[:, 0] = stress[:, 3] = stress[:, 5] = -ids * 1e6
         stress[:, 1] = 2e6
@@ -120,6 +121,7 @@ class FailureHistory(unittest.TestCase):
         self.assertEqual(rows("velocity_z")[1], [-14.0, -15.0, -14.0, -15.0])
         self.assertEqual(rows("volume_ratio")[1], [1.014, 1.015, 1.014, 1.015])
         self.assertEqual(rows("pressure")[1], [14e6, 15e6, 14e6, 15e6])
+        self.assertEqual(rows("plastic_strain")[1], [0.14, 0.15, 0.14, 0.15])
         for got, want in zip(rows("principal")[1], [-12e6, -13e6, -12e6, -13e6]):
             self.assertAlmostEqual(got, want, delta=1e-6)
 
