@@ -45,7 +45,7 @@ struct Layer {
   int elements = 1;                 // through the thickness
   Orthotropic elasticity;
   double density = 0;  // kg/m^3
-  // J2 plasticity with this hardening curve (its A, B, n; rate and thermal factors 1), for an
+  // J2 plasticity with this hardening curve (its A, B, n, and C with `strain_rate`; thermal factor 1), for an
   // isotropic layer only; none: the layer stays elastic and keeps no plastic state.
   std::optional<mpm::JohnsonCookStrength> plasticity;
   // A honeycomb core's out-of-plane normal and transverse shear stresses capped where its walls
