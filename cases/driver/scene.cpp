@@ -237,6 +237,14 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
       ParameterSource p(*ft, path + ".max_principal_stress", m.library, c);
       h.max_principal_stress = p.get("limit", L ? L->max_principal_stress : std::nullopt);
     }
+    if (auto* tt = model_table("tuler_butcher", m.failure == "tuler-butcher", "failure", "tuler-butcher")) {
+      ParameterSource p(*tt, path + ".tuler_butcher", m.library, c);
+      mpm::TulerButcher tb;
+      tb.threshold = p.get("threshold", L ? L->max_principal_stress : std::nullopt);
+      tb.exponent = (*tt)["exponent"].value<double>().value();
+      tb.time = p.get("time", std::nullopt);
+      h.tuler_butcher = tb;
+    }
     if (auto* et = model_table("compression_erosion", m.erosion == "compression", "erosion", "compression"))
       h.erosion = mpm::CompressionErosion{(*et)["min_volume_ratio"].value<double>().value()};
     if (auto* ht = model_table("adiabatic_heating", m.heating == "adiabatic", "heating", "adiabatic")) {

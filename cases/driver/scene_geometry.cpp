@@ -230,10 +230,11 @@ void read_zone_growth(const toml::table& t, Scene& s, const Validated& v, std::v
   bool damaging = false;
   for (const auto& b : s.bodies)
     if (const auto* part = std::get_if<PanelPart>(&b.shape); part && part->panel == f.panel && b.material < s.materials.size())
-      damaging = damaging || s.materials[b.material].models.damage || s.materials[b.material].models.max_principal_stress;
+      damaging = damaging || s.materials[b.material].models.damage || s.materials[b.material].models.max_principal_stress ||
+                 s.materials[b.material].models.tuler_butcher;
   if (!damaging)
     error("damage", fmt::format("the zone grows where panel '{}' is damaged, but none of its materials names "
-                                "damage = \"johnson-cook\" or a max-principal-stress failure", s.panels[f.panel].name));
+                                "damage = \"johnson-cook\" or a max-principal-stress or tuler-butcher failure", s.panels[f.panel].name));
   f.grow = g;
 }
 

@@ -107,6 +107,12 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
       .optional_quantity("reference_strain_rate", dims::rate, positive(), "Reference strain rate");
   TableSpec spall{.name = "max_principal_stress", .doc = "Max-principal-stress (spall) failure."};
   spall.optional_quantity("limit", dims::pressure, positive(), "sigma_max: failure when the largest principal stress reaches it");
+  TableSpec tuler{.name = "tuler_butcher",
+                  .doc = "Tuler-Butcher (time-dependent) spall: failure when (1/tau) times the integral of max(sigma_1/sigma_0 - 1, 0)^lambda dt reaches 1."};
+  tuler.optional_quantity("threshold", dims::pressure, positive(), "sigma_0: tension below it does no damage (default: the library material's max-principal-stress limit)")
+      .number("exponent", positive(), 2.0, "lambda")
+      .optional_quantity("time", dims::time, positive(),
+                         "tau = K / sigma_0^lambda: a stress held at sigma_1 fails the material after tau / (sigma_1/sigma_0 - 1)^lambda (required)");
   TableSpec erosion{.name = "compression_erosion",
                     .doc = "Erosion of points crushed beyond any physical state: they keep mass, momentum and internal energy but carry no stress."};
   erosion.number("min_volume_ratio", open_interval(0, 1), 0.5,
@@ -134,11 +140,12 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
               "Pressure: none (the elastic bulk modulus E / 3(1 - 2 nu)) or mie-gruneisen (eqs. 4-5)")
       .choice("viscosity", {"none", "bulk"}, "none", "Artificial bulk viscosity in compression (shocks)")
       .choice("damage", {"none", "johnson-cook"}, "none", "Damage accumulation (eqs. 2-3); failure when D reaches 1")
-      .choice("failure", {"none", "max-principal-stress"}, "none", "Instantaneous failure criterion (spall)")
+      .choice("failure", {"none", "max-principal-stress", "tuler-butcher"}, "none",
+              "Spall: max-principal-stress (instantaneous, the paper's) or tuler-butcher (time-dependent)")
       .choice("heating", {"none", "adiabatic"}, "none", "Temperature from plastic work (feeds the Johnson-Cook T*)")
       .choice("erosion", {"none", "compression"}, "none",
               "compression: a point crushed below min_volume_ratio loses its stress and moves as a point mass (keeps grid-squeezed thin walls from collapsing the time step)")
-      .table(jc).table(mg).table(damage).table(spall).table(heating).table(viscosity).table(erosion);
+      .table(jc).table(mg).table(damage).table(spall).table(tuler).table(heating).table(viscosity).table(erosion);
   return t;
 }
 

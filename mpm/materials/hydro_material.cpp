@@ -20,6 +20,7 @@ constexpr const char* plastic_work = "plastic_work";    // J/kg
 constexpr const char* viscous_work = "viscous_work";    // J/kg
 constexpr const char* temperature = "temperature";      // K
 constexpr const char* damage = "damage";
+constexpr const char* spall_damage = "spall_damage";    // Tuler-Butcher D_s
 constexpr const char* failed = "failed";                // failure_state: 0 intact, 1 failed, 2 eroded
 
 // Volume at the start of the step, from the end-of-step volume and det(I + dt L).
@@ -62,6 +63,7 @@ void HydroMaterial::declare_fields(Particles& P) const {
   if (models_.viscosity) P.add_field(viscous_work, FieldKind::scalar, "J/kg");
   if (models_.heating) P.add_field(temperature, FieldKind::scalar, "K");
   if (models_.damage) P.add_field(damage, FieldKind::scalar, "1");
+  if (models_.tuler_butcher) P.add_field(spall_damage, FieldKind::scalar, "1");
   if (can_fail()) P.add_field(failed, FieldKind::scalar, "1");
 }
 
@@ -122,6 +124,10 @@ StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r, const S
   if (models_.max_principal_stress) {
     auto t = timer.scope("failure: max-principal-stress");
     check_principal_stress(P, r);
+  }
+  if (models_.tuler_butcher) {
+    auto t = timer.scope("failure: tuler-butcher");
+    accumulate_spall(P, r, ctx.dt);
   }
   if (models_.erosion) {
     auto t = timer.scope("erosion: compression");
@@ -302,6 +308,26 @@ void HydroMaterial::check_principal_stress(Particles& P, ParticleRange r) const 
     if (fl[p] > 0.0) continue;
     double* sigma = &P.stress[6 * p];
     if (max_principal(sigma) >= limit) {
+      fl[p] = failure_state::failed;
+      strip_to_compression(sigma, pe[p]);
+    }
+  }
+}
+
+// Time-dependent spall: D_s += dt max(sigma_1 / sigma_0 - 1, 0)^lambda / tau; failure at D_s = 1.
+void HydroMaterial::accumulate_spall(Particles& P, ParticleRange r, double dt) const {
+  const TulerButcher& tb = *models_.tuler_butcher;
+  double* Ds = P.field(spall_damage).data();
+  double* fl = P.field(failed).data();
+  double* pe = P.field(eos_pressure).data();
+  const Span s(r);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = s.begin; p < s.end; ++p) {
+    if (fl[p] > 0.0) continue;
+    double* sigma = &P.stress[6 * p];
+    Ds[p] += dt * tb.damage_rate(max_principal(sigma));
+    if (Ds[p] >= 1.0) {
+      Ds[p] = 1.0;
       fl[p] = failure_state::failed;
       strip_to_compression(sigma, pe[p]);
     }

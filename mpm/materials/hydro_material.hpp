@@ -8,7 +8,8 @@
 //   viscosity  artificial bulk viscosity q (linear + quadratic) in compression
 //   heating    adiabatic: T = T0 + chi w_p / c_v from the plastic work w_p
 //   damage     Johnson-Cook (eqs. 2-3); a particle fails when D reaches 1
-//   failure    max principal stress: a particle fails when sigma_1 reaches sigma_max
+//   failure    max principal stress: a particle fails when sigma_1 reaches sigma_max; or
+//              Tuler-Butcher: when the impulse of sigma_1 above sigma_0 reaches K
 //   erosion    compression: a particle crushed below V/V0 = r_min is eroded
 // Failed material keeps only compressive pressure: no deviatoric stress, no tension. Eroded
 // material keeps its mass, momentum and internal energy but no stress at all: it moves as a free
@@ -20,6 +21,7 @@
 #include "mpm/materials/johnson_cook.hpp"
 #include "mpm/materials/johnson_cook_damage.hpp"
 #include "mpm/materials/mie_gruneisen.hpp"
+#include "mpm/materials/tuler_butcher.hpp"
 
 namespace hvi::mpm {
 
@@ -61,6 +63,7 @@ struct HydroModels {
   std::optional<AdiabaticHeating> heating;
   std::optional<JohnsonCookDamage> damage;
   std::optional<double> max_principal_stress;  // sigma_max, Pa
+  std::optional<TulerButcher> tuler_butcher;
   std::optional<CompressionErosion> erosion;
 };
 
@@ -90,10 +93,13 @@ class HydroMaterial : public Material {
   void update_temperature(Particles& P, ParticleRange r) const;
   void accumulate_damage(Particles& P, ParticleRange r, double dt) const;
   void check_principal_stress(Particles& P, ParticleRange r) const;
+  void accumulate_spall(Particles& P, ParticleRange r, double dt) const;
   void erode_crushed(Particles& P, ParticleRange r, double dt) const;
   double signal_speed_and_check(Particles& P, ParticleRange r, std::int64_t& bad) const;
   // The "failed" field exists when a model can fail or erode a particle.
-  bool can_fail() const { return models_.damage || models_.max_principal_stress || models_.erosion; }
+  bool can_fail() const {
+    return models_.damage || models_.max_principal_stress || models_.tuler_butcher || models_.erosion;
+  }
 
   HydroModels models_;
   double G_, K_;

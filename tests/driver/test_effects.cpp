@@ -105,6 +105,23 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
   EXPECT_TRUE(plain.phases.count("eos: elastic bulk"));
 }
 
+// Tuler-Butcher spall is the other choice of `failure`: its damage field, the failure state and
+// its phase exist only when it is named.
+TEST(Effects, TulerButcherIsAllocatedComputedAndWrittenOnlyWhenNamed) {
+  const std::vector<std::string> jc = {"strength=johnson-cook", "eos=mie-gruneisen"};
+  const Effects plain = run_with(jc);
+  const Effects named = run_with({"strength=johnson-cook", "eos=mie-gruneisen", "failure=tuler-butcher",
+                                  "tuler_butcher.threshold=1.5e9", "tuler_butcher.time=1e-8"});
+  for (const std::string f : {"spall_damage", "failed"}) {
+    EXPECT_FALSE(plain.fields.count(f)) << f;
+    EXPECT_FALSE(plain.datasets.count(f)) << f;
+    EXPECT_TRUE(named.fields.count(f)) << f;
+    EXPECT_TRUE(named.datasets.count(f)) << f;
+  }
+  EXPECT_FALSE(plain.phases.count("failure: tuler-butcher"));
+  EXPECT_TRUE(named.phases.count("failure: tuler-butcher"));
+}
+
 // A scene setting that adds phases to the step runs them only when named, and adds no particle
 // field or snapshot dataset.
 void phases_only_when_named(const std::string& setting, const std::vector<std::string>& phases) {

@@ -76,6 +76,32 @@ mie_gruneisen = { c0 = "5 km/s" })"), "scene.toml");
   }
 }
 
+// Tuler-Butcher spall: the threshold comes from the library's max-principal-stress limit unless
+// given, the time is read with its unit, and a scene that leaves the time out is told where.
+TEST(SceneMaterials, TulerButcherTakesTheLibraryThresholdAndNeedsItsTime) {
+  const Scene s = parse_scene(scene_with(R"(name = "m"
+library = "Al2024-T81"
+failure = "tuler-butcher"
+tuler_butcher = { time = "20 ns" })"), "scene.toml");
+  const auto& tb = *s.materials[0].models.tuler_butcher;
+  EXPECT_DOUBLE_EQ(tb.threshold, 1500e6);  // Table 1's spall stress
+  EXPECT_DOUBLE_EQ(tb.exponent, 2.0);
+  EXPECT_DOUBLE_EQ(tb.time, 20e-9);
+  EXPECT_FALSE(s.materials[0].models.max_principal_stress.has_value());
+  EXPECT_EQ(s.materials[0].effects(), "elastic strength, tuler-butcher failure");
+  try {
+    parse_scene(scene_with(R"(name = "m"
+library = "Al2024-T81"
+failure = "tuler-butcher")"), "scene.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    bool found = false;
+    for (const auto& d : e.diagnostics())
+      if (d.key == "material.m.tuler_butcher" && d.message.find("missing parameter 'time'") != std::string::npos) found = true;
+    EXPECT_TRUE(found) << e.diagnostics().front().text();
+  }
+}
+
 TEST(SceneMaterials, LibraryNameTypoGetsASuggestion) {
   try {
     parse_scene(scene_with("name = \"m\"\nlibrary = \"Al6016\""), "scene.toml");

@@ -1,5 +1,5 @@
 // Johnson-Cook damage (paper eqs. 2-3) under a prescribed strain path, max-principal-stress
-// failure, the principal stress against Eigen's eigen-solver, and what failed material keeps.
+// failure, Tuler-Butcher spall under a held stress, the principal stress against Eigen's eigen-solver, and what failed material keeps.
 #include <cmath>
 #include <random>
 
@@ -103,6 +103,54 @@ TEST(MaxPrincipalStress, FailsAtSigmaMaxAndKeepsOnlyCompression) {
   const double* s = point.stress();
   EXPECT_LT(s[sym::xx], 0.0);  // pressure again
   EXPECT_DOUBLE_EQ(s[sym::xx], s[sym::yy]);  // but no deviator
+}
+
+// Tuler-Butcher: pulled in uniaxial strain to sigma_1 above sigma_0 and held there (L = 0 keeps
+// the stress), the point fails after tau / (sigma_1 / sigma_0 - 1)^lambda less what the pull
+// accumulated, to within the step: the closed form of the impulse integral at constant stress.
+// Below sigma_0 it never fails, however long it is held.
+TEST(TulerButcher, FailsAfterTheClosedFormTimeUnderAHeldStress) {
+  HydroModels models = find_library_material("Al2024-T81")->parameters;
+  models.damage.reset();
+  models.max_principal_stress.reset();
+  models.johnson_cook.reset();  // elastic: a rate-dependent yield would relax the held stress
+  models.heating.reset();
+  const double sigma_0 = 1.0e9, lambda = 2.0, tau = 2e-8, rate = 1e6, dt = 1e-9;  // ~0.1 GPa per step
+  models.tuler_butcher = TulerButcher{sigma_0, lambda, tau};
+  const double tension[9] = {rate, 0, 0, 0, 0, 0, 0, 0, 0}, hold[9] = {};
+  for (const double target : {0.9e9, 1.5e9, 2.0e9}) {
+    SCOPED_TRACE(target);
+    const HydroMaterial material("face", models);
+    test::MaterialPoint point(material);
+    // The pull: D_s follows the sum of dt (sigma_1 / sigma_0 - 1)^lambda / tau over its steps.
+    double expected = 0.0;
+    while (max_principal(point.stress()) < target) {
+      point.step(tension, dt);
+      expected += dt * std::pow(std::max(max_principal(point.stress()) / sigma_0 - 1.0, 0.0), lambda) / tau;
+      ASSERT_NEAR(point.field("spall_damage"), expected, 1e-12);
+    }
+    ASSERT_EQ(point.field("failed"), 0.0);
+    const double sigma_1 = max_principal(point.stress());
+    const double excess = sigma_1 / sigma_0 - 1.0;
+    const int limit = 5000;  // 5 us, 60 times the longest closed-form time here
+    int held = 0;
+    while (point.field("failed") == 0.0 && held < limit) {
+      point.step(hold, dt);
+      ++held;
+      if (held == 1) {
+        ASSERT_DOUBLE_EQ(max_principal(point.stress()), sigma_1);  // the hold keeps it
+      }
+    }
+    if (excess <= 0.0) {
+      EXPECT_EQ(held, limit);
+      EXPECT_EQ(point.field("spall_damage"), expected);
+      continue;
+    }
+    const double t_closed_form = (1.0 - expected) * tau / std::pow(excess, lambda);
+    EXPECT_NEAR(held * dt, t_closed_form, dt);
+    EXPECT_EQ(point.field("spall_damage"), 1.0);
+    for (int c = 0; c < 6; ++c) EXPECT_EQ(point.stress()[c] > 0 ? point.stress()[c] : 0.0, 0.0);  // no tension left
+  }
 }
 
 }  // namespace
