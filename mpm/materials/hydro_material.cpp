@@ -45,6 +45,23 @@ struct Span {
   explicit Span(ParticleRange r) : begin(static_cast<std::int64_t>(r.begin)), end(static_cast<std::int64_t>(r.end)) {}
 };
 
+// Fails every intact point of r for which fails(p, sigma) is true: it keeps compression only.
+template <class Criterion>
+void fail_intact_points(Particles& P, ParticleRange r, Criterion fails) {
+  double* fl = P.field(failed).data();
+  double* pe = P.field(eos_pressure).data();
+  const Span s(r);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = s.begin; p < s.end; ++p) {
+    if (fl[p] > 0.0) continue;
+    double* sigma = &P.stress[6 * p];
+    if (fails(p, sigma)) {
+      fl[p] = failure_state::failed;
+      strip_to_compression(sigma, pe[p]);
+    }
+  }
+}
+
 }  // namespace
 
 HydroMaterial::HydroMaterial(std::string name, HydroModels models)
@@ -275,63 +292,33 @@ void HydroMaterial::accumulate_damage(Particles& P, ParticleRange r, double dt) 
   const JohnsonCookStrength* jc = models_.johnson_cook ? &*models_.johnson_cook : nullptr;
   if (!jc) return;  // without plastic flow there is no damage to accumulate
   double* D = P.field(damage).data();
-  double* fl = P.field(failed).data();
-  double* pe = P.field(eos_pressure).data();
   const double* rate = P.field(plastic_strain_rate).data();
   const double* T = models_.heating ? P.field(temperature).data() : nullptr;
   const double T0 = models_.initial_temperature;
-  const Span s(r);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t p = s.begin; p < s.end; ++p) {
-    if (fl[p] > 0.0 || rate[p] <= 0.0) continue;
-    double* sigma = &P.stress[6 * p];
+  fail_intact_points(P, r, [&](std::int64_t p, const double* sigma) {
+    if (rate[p] <= 0.0) return false;
     const double eq = von_mises(sigma);
     const double triaxiality = eq > 0.0 ? trace_sym(sigma) / 3.0 / eq : 0.0;
     const double eps_f = jd.failure_strain(triaxiality, rate[p], jc->homologous_temperature(T ? T[p] : T0));
-    D[p] += rate[p] * dt / eps_f;
-    if (D[p] >= 1.0) {
-      D[p] = 1.0;
-      fl[p] = failure_state::failed;
-      strip_to_compression(sigma, pe[p]);
-    }
-  }
+    D[p] = std::min(D[p] + rate[p] * dt / eps_f, 1.0);
+    return D[p] >= 1.0;
+  });
 }
 
 // Spall: failure when the largest principal stress reaches sigma_max.
 void HydroMaterial::check_principal_stress(Particles& P, ParticleRange r) const {
   const double limit = *models_.max_principal_stress;
-  double* fl = P.field(failed).data();
-  double* pe = P.field(eos_pressure).data();
-  const Span s(r);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t p = s.begin; p < s.end; ++p) {
-    if (fl[p] > 0.0) continue;
-    double* sigma = &P.stress[6 * p];
-    if (max_principal(sigma) >= limit) {
-      fl[p] = failure_state::failed;
-      strip_to_compression(sigma, pe[p]);
-    }
-  }
+  fail_intact_points(P, r, [&](std::int64_t, const double* sigma) { return max_principal(sigma) >= limit; });
 }
 
 // Time-dependent spall: D_s += dt max(sigma_1 / sigma_0 - 1, 0)^lambda / tau; failure at D_s = 1.
 void HydroMaterial::accumulate_spall(Particles& P, ParticleRange r, double dt) const {
   const TulerButcher& tb = *models_.tuler_butcher;
   double* Ds = P.field(spall_damage).data();
-  double* fl = P.field(failed).data();
-  double* pe = P.field(eos_pressure).data();
-  const Span s(r);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t p = s.begin; p < s.end; ++p) {
-    if (fl[p] > 0.0) continue;
-    double* sigma = &P.stress[6 * p];
-    Ds[p] += dt * tb.damage_rate(max_principal(sigma));
-    if (Ds[p] >= 1.0) {
-      Ds[p] = 1.0;
-      fl[p] = failure_state::failed;
-      strip_to_compression(sigma, pe[p]);
-    }
-  }
+  fail_intact_points(P, r, [&](std::int64_t p, const double* sigma) {
+    Ds[p] = std::min(Ds[p] + dt * tb.damage_rate(max_principal(sigma)), 1.0);
+    return Ds[p] >= 1.0;
+  });
 }
 
 // Erosion: a point crushed below V / V0 = r_min loses its stress for good. Its mass and momentum
