@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <limits>
 
 #include <toml++/toml.h>
@@ -34,6 +35,26 @@ int run_child(const std::string& hvi, const std::vector<std::string>& args, cons
   command.append(" 2>&1");
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+ChildLog read_child_log(const std::filesystem::path& log, std::uintmax_t from, const std::string& scene_file) {
+  ChildLog said;
+  std::ifstream in(log);
+  in.seekg(static_cast<std::streamoff>(from));
+  const std::string banner = "hvi: " + scene_file;
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto text = line.find_first_not_of(' ');
+    if (text == std::string::npos) continue;
+    const std::string_view l = std::string_view(line).substr(text);
+    if (l.starts_with("warning: ")) {
+      said.warnings.emplace_back(l);
+    } else if (text == 0 && l.starts_with("hvi: ")) {
+      const bool is_banner = l.starts_with("hvi: resuming ") || l == banner || l.starts_with(banner + " — ");
+      if (!is_banner) said.outcome.emplace_back(l);
+    }
+  }
+  return said;
 }
 
 RunSummary read_run_summary(const std::filesystem::path& run_dir) {

@@ -2,6 +2,7 @@
 // Runs of this executable as child processes (hvi convergence, hvi sweep): each run is an ordinary
 // `hvi run` in its own directory with its own log, so it can be inspected, resumed or re-run
 // alone, and its peak memory is its own.
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -14,6 +15,16 @@ namespace hvi::driver {
 // code (-1 if it did not exit normally).
 int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log,
               bool append = false);
+
+// What a child run said in its log from byte `from` on (one invocation of a log that resumed runs
+// append to): the lines that tell how it ended ("hvi: ..." other than the banner naming the scene
+// `scene_file` or the run it resumes) and its warnings, without their indentation, so that the
+// parent's console can show why a run failed or stopped without the log being opened.
+struct ChildLog {
+  std::vector<std::string> outcome;
+  std::vector<std::string> warnings;
+};
+ChildLog read_child_log(const std::filesystem::path& log, std::uintmax_t from, const std::string& scene_file);
 
 // `s` in single quotes for the shell (a quote inside becomes '\'').
 std::string shell_quote(const std::string& s);

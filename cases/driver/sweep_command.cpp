@@ -383,6 +383,7 @@ int run_sweep(const SweepOptions& o) {
         header << fmt::format("hvi sweep: run '{}' of {}: {} {}\n", run.name, o.study, study.scene,
                               fmt::join(run.overrides, " "));
       }
+      const std::uintmax_t log_start = fs::file_size(run_log);
       const int status = run_child(o.hvi, args, run_log, true);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       summary = read_run_summary(dir);
@@ -391,13 +392,20 @@ int run_sweep(const SweepOptions& o) {
         write_table(whole, selected, o.out, status_of);
         return status;
       }
+      // The run's own account of how it ended, and its warnings (a disk too small for its output,
+      // say), on the console: a sweep of hours is watched there, not in each run's log.
+      const ChildLog said = read_child_log(run_log, log_start, study.scene);
       if (status != success || !summary.finished()) {
-        status_of[run.name] = "failed";
+        const bool stopped = status == success && summary.status == "stopped";
+        status_of[run.name] = stopped ? "stopped" : "failed";
         code = run_failed;
-        fmt::print("    failed after {:.1f} s (exit {}); see {}\n", wall, status, run_log.string());
+        fmt::print("    {} after {:.1f} s (exit {}); see {}\n", stopped ? "stopped" : "failed", wall, status,
+                   run_log.string());
+        for (const auto& line : said.outcome) fmt::print("      {}\n", line);
       } else {
         fmt::print("    finished in {:.1f} s\n", wall);
       }
+      for (const auto& line : said.warnings) fmt::print("      {}\n", line);
     }
     if (summary.finished() && !fs::exists(dir / "measurements.csv")) {
       const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");

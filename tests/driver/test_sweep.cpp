@@ -199,6 +199,43 @@ TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
   EXPECT_NEAR(std::stod(later.at("v100_r1").at("front")) - std::stod(later.at("still").at("front")), 0.3e-3, 1e-12);
 }
 
+// A run that does not finish is reported on the sweep's console with the run's own account of
+// it and its warnings, and tabled as stopped (it ended cleanly short of its end time) or failed.
+TEST(Sweep, TheConsoleSaysWhyARunStoppedOrFailed) {
+  const fs::path dir = fs::path(testing::TempDir()) / "hvi_sweep_why";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path log = dir / "console.txt";
+
+  // Stopped by run.max_steps, at 2 km/s, 43% of the steel's bulk sound speed: the EOS warning.
+  std::ofstream(dir / "stopped.toml") << "scene = \"" << data << "drift.toml\"\n"
+                                      << "[[run]]\nname = \"still\"\n"
+                                      << "set = [\"body.ball.velocity=[2000, 0, 0]\", \"run.max_steps=3\"]\n";
+  ASSERT_EQ(run("sweep " + (dir / "stopped.toml").string() + " --out " + (dir / "stopped").string(), log), 3)
+      << read(log);
+  std::string console = read(log);
+  for (const char* part : {"    stopped after ", "(exit 0); see ", "      hvi: stopped (run.max_steps) at t = ",
+                           ", step 3: 3 steps in ", "      warning: material 'steel' names no equation of state"})
+    EXPECT_NE(console.find(part), std::string::npos) << part << " in:\n" << console;
+  EXPECT_EQ(console.find("hvi: " + data + "drift.toml"), std::string::npos) << console;  // not the banner
+  EXPECT_EQ(table(dir / "stopped" / "sweep.csv").at("still").at("status"), "stopped");
+
+  // Failed: two spheres colliding on linear shape functions with USL (see test_cli).
+  std::ofstream(dir / "failed.toml") << "scene = \"" << data << "small_spheres.toml\"\n"
+                                     << "[[run]]\nname = \"unstable\"\n"
+                                     << "set = [\"grid.shape_function=linear\", \"grid.scheme=usl\"]\n";
+  ASSERT_EQ(run("sweep " + (dir / "failed.toml").string() + " --out " + (dir / "failed").string(), log), 3) << read(log);
+  console = read(log);
+  for (const char* part : {"    failed after ", "(exit 3); see ", "      hvi: the run failed: step ", "non-positive volume",
+                           "checkpoint.h5 (step 0) the last state before it"})
+    EXPECT_NE(console.find(part), std::string::npos) << part << " in:\n" << console;
+  // The spheres meet at 600 m/s, 13% of that sound speed: the warning comes after the failure.
+  const auto warning = console.find("      warning: material 'steel' names no equation of state, but the impact speed 600.1 m/s");
+  ASSERT_NE(warning, std::string::npos) << console;
+  EXPECT_GT(warning, console.find("the last state before it")) << console;
+  EXPECT_EQ(table(dir / "failed" / "sweep.csv").at("unstable").at("status"), "failed");
+}
+
 TEST(Sweep, ABadLevelStopsTheSweepBeforeAnythingRuns) {
   const fs::path dir = fs::path(testing::TempDir()) / "hvi_sweep_bad";
   fs::remove_all(dir);
