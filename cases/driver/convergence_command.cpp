@@ -84,11 +84,17 @@ int run_convergence(const ConvergenceOptions& o) {
         args.insert(args.end(), {"--set", fmt::format("body.{}.particles_per_cell={}", b.name, l.particles_per_cell)});
     fmt::print("hvi convergence: running {} (cell {:.4g} m)\n", l.label, l.cell_size);
     std::fflush(stdout);
-    const int status = run_child(o.hvi, args, fs::path(o.out) / (l.label + ".log"));
+    const fs::path log = fs::path(o.out) / (l.label + ".log");
+    const int status = run_child(o.hvi, args, log);
+    // The level's warnings, and for a failed one its own account, on the console (as hvi sweep).
+    const ChildLog said = read_child_log(log, 0, o.scene);
     if (status != 0 || !read_summary(dir, l)) {
-      fmt::print(stderr, "hvi convergence: level {} failed; see {}\n", l.label, (fs::path(o.out) / (l.label + ".log")).string());
+      fmt::print(stderr, "hvi convergence: level {} failed; see {}\n", l.label, log.string());
+      for (const auto& line : said.outcome) fmt::print(stderr, "  {}\n", line);
+      for (const auto& line : said.warnings) fmt::print(stderr, "  {}\n", line);
       return run_failed;
     }
+    for (const auto& line : said.warnings) fmt::print("  {}\n", line);
   }
 
   // Reference values: given, else Richardson-extrapolated from the three finest cell sizes

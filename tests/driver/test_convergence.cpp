@@ -1,6 +1,6 @@
 // hvi convergence: the observed order and the Richardson extrapolation recover a known power law
-// for any refinement ratio, refuse a ladder that does not converge monotonically, and the ladder's
-// cell sizes follow --ratio.
+// for any refinement ratio, refuse a ladder that does not converge monotonically, the ladder's
+// cell sizes follow --ratio, and a level that fails says why on the console.
 #include <sys/wait.h>
 
 #include <cmath>
@@ -68,4 +68,23 @@ TEST(Convergence, LadderCellSizesFollowTheRatio) {
   std::stringstream md;
   md << std::ifstream(out / "convergence.md").rdbuf();
   EXPECT_NE(md.str().find("--levels 2 --ratio 1.25"), std::string::npos) << md.str();
+}
+
+// A level that fails stops the ladder, and the console carries the run's own account of the failure
+// and its warnings (two spheres colliding on linear shape functions with USL: see test_cli).
+TEST(Convergence, AFailedLevelSaysWhyOnTheConsole) {
+  const fs::path out = fs::path(testing::TempDir()) / "hvi_convergence_failed";
+  fs::remove_all(out);
+  const fs::path log = fs::path(testing::TempDir()) / "hvi_convergence_failed.log";
+  const std::string cmd = std::string(HVI_BINARY) + " convergence " + HVI_SOURCE_DIR +
+                          "/tests/driver/data/small_spheres.toml --levels 2 --threads 1 --out " + out.string() +
+                          " --set grid.shape_function=linear --set grid.scheme=usl > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 3) << std::ifstream(log).rdbuf();
+  std::stringstream console;
+  console << std::ifstream(log).rdbuf();
+  for (const char* part : {"hvi convergence: level h0 failed; see ", "  hvi: the run failed: step ", "non-positive volume",
+                           "  warning: material 'steel' names no equation of state"})
+    EXPECT_NE(console.str().find(part), std::string::npos) << part << " in:\n" << console.str();
+  EXPECT_FALSE(fs::exists(out / "h1"));  // the ladder stopped at its first level
 }
