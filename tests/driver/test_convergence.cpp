@@ -28,6 +28,13 @@ void expect_recovers(double q_star, double c, double p, double h, double r) {
   EXPECT_NEAR(e.value, q_star, 1e-10 * std::fabs(q_star)) << "r = " << r;
 }
 
+// `hvi convergence ARGS` with its console in `log`; the exit code (-1 if it did not exit normally).
+int convergence(const std::string& args, const fs::path& log) {
+  const std::string cmd = std::string(HVI_BINARY) + " convergence " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 }  // namespace
 
 TEST(Convergence, RichardsonRecoversAPowerLawForAnyRatio) {
@@ -47,11 +54,11 @@ TEST(Convergence, LadderCellSizesFollowTheRatio) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_convergence_ratio";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_convergence_ratio.log";
-  const std::string cmd = std::string(HVI_BINARY) + " convergence " + HVI_SOURCE_DIR +
-                          "/tests/driver/data/drift.toml --levels 2 --ratio 1.25 --threads 1 --out " + out.string() +
-                          " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << std::ifstream(log).rdbuf();
+  ASSERT_EQ(convergence(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/drift.toml --levels 2 --ratio 1.25 --threads 1 --out " +
+                            out.string(),
+                        log),
+            0)
+      << std::ifstream(log).rdbuf();
   // convergence.csv: level,cell_size,...; the scene's 0.5 mm, then 0.5 / 1.25 = 0.4 mm.
   std::ifstream csv(out / "convergence.csv");
   std::string line;
@@ -76,11 +83,11 @@ TEST(Convergence, AFailedLevelSaysWhyOnTheConsole) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_convergence_failed";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_convergence_failed.log";
-  const std::string cmd = std::string(HVI_BINARY) + " convergence " + HVI_SOURCE_DIR +
-                          "/tests/driver/data/small_spheres.toml --levels 2 --threads 1 --out " + out.string() +
-                          " --set grid.shape_function=linear --set grid.scheme=usl > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 3) << std::ifstream(log).rdbuf();
+  ASSERT_EQ(convergence(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_spheres.toml --levels 2 --threads 1 --out " +
+                            out.string() + " --set grid.shape_function=linear --set grid.scheme=usl",
+                        log),
+            3)
+      << std::ifstream(log).rdbuf();
   std::stringstream console;
   console << std::ifstream(log).rdbuf();
   for (const char* part : {"hvi convergence: level h0 failed; see ", "  hvi: the run failed: step ", "non-positive volume",
