@@ -83,6 +83,15 @@ int measure_command(const MeasureOptions& options);
 // The files, for tests and scripts.
 void write_measurements(const Measurements& m, const std::filesystem::path& dir);
 void write_history(const std::vector<Measurements>& history, const std::filesystem::path& dir);
+// A run's own hole history (a holes measure with history = true): the columns of
+// measurements_history.csv, one row appended per snapshot as the run writes it. Its own name, so
+// that hvi measure --snapshot all on a run that kept only its newest snapshots leaves it whole.
+inline constexpr const char* hole_history_file = "holes_history.csv";
+// Appends m's row to `file`, the header first when the file is new or empty.
+void append_history_row(const Measurements& m, const std::filesystem::path& file);
+// Keeps the header and the rows of steps up to `last_step`: a run resumed from that step writes
+// the later ones again. No file: nothing to do.
+void keep_history_rows(const std::filesystem::path& file, std::int64_t last_step);
 // Removes what the two above wrote into a run directory, and the sweep's log of the measurement
 // (measure.log): a run replaced or continued makes them describe a state it no longer ends in.
 void remove_measurements(const std::filesystem::path& dir);

@@ -95,16 +95,20 @@ std::vector<std::pair<std::string, std::string>> csv_cells(const Measurements& m
 }
 
 // One header line, then one row per measurement.
+// One CSV line of a measurement: its column names (header) or its values.
+void write_csv_line(std::ostream& out, const Measurements& m, bool header) {
+  const auto cells = csv_cells(m);
+  for (std::size_t k = 0; k < cells.size(); ++k) out << (k ? "," : "") << (header ? cells[k].first : cells[k].second);
+  out << '\n';
+}
+
 void write_csv(const std::vector<Measurements>& rows, const fs::path& file) {
   std::ofstream out(file);
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    const auto cells = csv_cells(rows[r]);
-    if (r == 0)
-      for (std::size_t k = 0; k < cells.size(); ++k) out << (k ? "," : "") << cells[k].first;
-    out << '\n';
-    for (std::size_t k = 0; k < cells.size(); ++k) out << (k ? "," : "") << cells[k].second;
+    if (r == 0) write_csv_line(out, rows[r], true);
+    write_csv_line(out, rows[r], false);
   }
-  out << '\n';
+  if (rows.empty()) out << '\n';
 }
 
 // Material black, the hole grey, other empty pixels white; +y up.
@@ -197,6 +201,30 @@ void write_measurements(const Measurements& m, const fs::path& dir) {
 
 void write_history(const std::vector<Measurements>& history, const fs::path& dir) {
   write_csv(history, dir / "measurements_history.csv");
+}
+
+void append_history_row(const Measurements& m, const fs::path& file) {
+  const bool header = !fs::exists(file) || fs::file_size(file) == 0;
+  std::ofstream out(file, std::ios::app);
+  if (header) write_csv_line(out, m, true);
+  write_csv_line(out, m, false);
+}
+
+void keep_history_rows(const fs::path& file, std::int64_t last_step) {
+  if (!fs::exists(file)) return;
+  std::string kept, line;
+  {
+    std::ifstream in(file);
+    for (bool first = true; std::getline(in, line); first = false) {
+      // The third column is the step (run, time, step, ...).
+      const auto a = line.find(',');
+      const auto b = a == std::string::npos ? a : line.find(',', a + 1);
+      const auto c = b == std::string::npos ? b : line.find(',', b + 1);
+      if (!first && c != std::string::npos && std::stoll(line.substr(b + 1, c - b - 1)) > last_step) continue;
+      kept += line + '\n';
+    }
+  }
+  std::ofstream(file, std::ios::trunc) << kept;
 }
 
 void remove_measurements(const fs::path& dir) {

@@ -21,6 +21,9 @@ TableSpec measure_table() {
       .optional_quantity("from", dims::length, Range{}, "Diameter: lowest coordinate along the axis of the particles counted")
       .optional_quantity("to", dims::length, Range{}, "Diameter: highest coordinate along the axis of the particles counted")
       .vector("center", dims::length, std::vector<double>{0, 0, 0}, "Diameter: a point of the line")
+      .boolean("history", false,
+               "Holes: also measure every snapshot as the run writes it, one row each in holes_history.csv "
+               "(the columns of hvi measure's measurements_history.csv)")
       .vector("point", dims::length, std::nullopt,
               "Displacement: the probe's point in the undeformed configuration; its `axis` component is "
                        "followed in probes.csv at every energy.csv row");
@@ -42,6 +45,7 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
     m.field = t["field"].value<std::string>().value();
     m.offset = t["offset"].value<double>().value();
     m.surface = t["surface"].value<bool>().value();
+    m.history = t["history"].value<bool>().value();
     m.from = t["from"].value<double>();
     m.to = t["to"].value<double>();
     const toml::array& c = *t["center"].as_array();
@@ -57,6 +61,8 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
       errors.push_back(v.at(path + ".body", fmt::format("no body named '{}'", m.body)));
     if ((m.kind == "field_max" || m.kind == "field_min") && m.field.empty())
       errors.push_back(v.at(path, "a field measure needs `field` (e.g. \"plastic_strain\")"));
+    if (m.history && m.kind != "holes")
+      errors.push_back(v.at(path + ".history", "`history` belongs to a holes measure (kind = \"holes\")"));
     if (m.kind == "holes" && std::any_of(out.begin(), out.end(), [](const auto& o) { return o.kind == "holes"; }))
       errors.push_back(v.at(path + ".kind", "the holes are measured once per run: a second kind = \"holes\" measure"));
     for (const auto& other : out)

@@ -41,6 +41,7 @@ struct MeasureSettings {
   int axis = 2;
   double offset = 0.0;
   bool surface = false;
+  bool history = false;  // holes: measured at every snapshot as the run writes it
   std::optional<double> from, to;
   std::array<double, 3> center{};
   std::optional<std::array<double, 3>> point;  // displacement

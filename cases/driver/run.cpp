@@ -20,6 +20,7 @@
 #include "cases/driver/build_solver.hpp"
 #include "cases/driver/hybrid.hpp"
 #include "cases/driver/probes.hpp"
+#include "cases/driver/hole_history.hpp"
 #include "cases/driver/measure_command.hpp"
 #include "cases/driver/measures.hpp"
 #include "hvi_git_revision.hpp"
@@ -56,8 +57,8 @@ void report_disk(const fs::path& dir, const mpm::Solver& s, const scene::Scene& 
              error ? std::string() : fmt::format("; {} free on the disk", format_bytes(static_cast<double>(space.available))));
   if (!error && o.total > static_cast<double>(space.available))
     fmt::print("  warning: the output needs about {} and {}'s disk has {} free: the run will stop when the disk is "
-               "full (its last checkpoint kept, to resume from); free space, delete snapshots as it runs, or raise "
-               "output.interval\n",
+               "full (its last checkpoint kept, to resume from); free space, keep only the newest snapshots "
+               "(output.keep_snapshots), or raise output.interval\n",
                format_bytes(o.total), dir.string(), format_bytes(static_cast<double>(space.available)));
 }
 
@@ -203,6 +204,10 @@ OutputSize output_size(const mpm::Solver& s, const scene::Scene& scene, double n
   const double end = scene.end_time;
   o.snapshots = 1.0;  // the last step's
   if (next_output < end * (1 - 1e-12)) o.snapshots += std::ceil((end - next_output) / scene.output_interval - 1e-9);
+  // Keeping only the newest N, at most N + 1 besides the first are on the disk at once (the newest is
+  // written before the oldest goes); the count from t = 0 (next_output 0) includes the first.
+  if (scene.keep_snapshots > 0)
+    o.snapshots = std::min(o.snapshots, static_cast<double>(scene.keep_snapshots) + (next_output > 0 ? 1 : 2));
   o.snapshot = static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) * s.particles().size());
   o.checkpoint = static_cast<double>(mpm::io::checkpoint_bytes(s));
   o.total = o.snapshots * o.snapshot + (fresh ? 2.0 : 1.0) * o.checkpoint;
@@ -264,7 +269,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   if (options.overwrite || options.resume) remove_measurements(dir);
   if (options.overwrite && !options.resume) {
     for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
-                          "run.resumed.json", "resumes.jsonl", "failure.h5", "far_field.pvd", "probes.csv"})
+                          "run.resumed.json", "resumes.jsonl", "failure.h5", "far_field.pvd", "probes.csv",
+                          hole_history_file})
       fs::remove(dir / f);
     fs::remove_all(dir / "snapshots");
     fs::remove_all(dir / "far_field");
@@ -279,6 +285,17 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   mpm::Solver& s = *solver;
   mpm::PhaseTimer& timer = s.timer();
   mpm::io::SnapshotWriter snapshots(dir);
+  snapshots.keep_newest(static_cast<std::size_t>(scene.keep_snapshots));
+  // The holes at every snapshot, when the holes measure asks for its history.
+  const auto holes = std::find_if(scene.measures.begin(), scene.measures.end(), [](const auto& m) { return m.kind == "holes"; });
+  std::optional<HoleHistory> history;
+  if (holes != scene.measures.end() && holes->history)
+    history.emplace(dir, holes->body, options.resume ? s.step_count() : -1);
+  auto measure_holes = [&] {
+    auto t = timer.scope("measure the holes");
+    const Measurements& m = history->add();
+    fmt::print("  holes at t = {:.4g} us: {}\n", m.time * 1e6, hole_summary(m));
+  };
   mpm::io::EnergyLog energy_log(dir / "energy.csv", options.resume ? s.step_count() : -1, hybrid != nullptr,
                                 s.contact() != nullptr);
   probes->open(dir, options.resume ? s.step_count() : -1);
@@ -324,6 +341,13 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
     track(s, record);
     write_snapshots();
     output.advance(s.time());
+    // A holes history that cannot be measured (no panel to find, say) stops the run at t = 0.
+    if (history) try {
+        measure_holes();
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "hvi: {}: measure '{}' (history = true): {}\n", scene.file, holes->name, e.what());
+        return input_error;
+      }
   }
 
   std::int64_t last_checkpoint_step = s.step_count();
@@ -412,6 +436,13 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
         write_snapshots();
         output.advance(s.time());
         progress.snapshot_written(s);
+        if (history) try {
+            measure_holes();
+          } catch (const std::exception& e) {
+            fmt::print(stderr, "hvi: warning: the holes could not be measured at t = {:.6g} s: {}; no more rows in {}\n",
+                       s.time(), e.what(), hole_history_file);
+            history.reset();
+          }
       }
       if (checkpoints.due(s.time())) {
         checkpoints.advance(s.time());
@@ -552,8 +583,9 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   // The panel's holes, from the final snapshot (as hvi measure RUN_DIR does). The solver and the
   // far field go first, their memory back to the system: the measure reads the snapshots and on a
   // large model needs memory of its own, which then does not come on top of the run's.
-  const auto holes = std::find_if(scene.measures.begin(), scene.measures.end(), [](const auto& m) { return m.kind == "holes"; });
   if (holes != scene.measures.end() && finished) {
+    // The history has measured the final snapshot already.
+    const Measurements* final_holes = history ? history->at_step(s.step_count()) : nullptr;
     probes.reset();
     hybrid.reset();
     solver.reset();
@@ -562,7 +594,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
       MeasureOptions mo;
       mo.run = dir;
       mo.front = holes->body;  // empty: the panel's front facesheet
-      const Measurements m = measure_run(mo);
+      const Measurements m = final_holes ? *final_holes : measure_run(mo);
       fmt::print("\n");
       print_measurements(m);
       write_measurements(m, dir);

@@ -462,6 +462,7 @@ Scene resolve(const toml::table& document, const std::string& file) {
   s.output_interval = optional_number(output, "interval").value_or(s.end_time / 10);
   s.checkpoint_interval = optional_number(output, "checkpoint_interval").value_or(s.output_interval);
   s.energy_every = integer(output, "energy_every");
+  s.keep_snapshots = integer(output, "keep_snapshots");
   output.insert_or_assign("interval", s.output_interval);
   output.insert_or_assign("checkpoint_interval", s.checkpoint_interval);
   if (!c.errors.empty()) throw SceneError(c.errors);

@@ -159,6 +159,7 @@ struct Scene {
   double max_energy_growth = 0.5;
   double output_interval = 0.0, checkpoint_interval = 0.0;
   std::int64_t energy_every = 10;
+  std::int64_t keep_snapshots = 0;  // 0: all; else the first and the newest N
   GridSettings grid;
   std::vector<BoundarySettings> boundaries;
   std::vector<MaterialSettings> materials;

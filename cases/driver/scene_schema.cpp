@@ -31,7 +31,11 @@ TableSpec output_table() {
                       "Simulated time between particle snapshots (default: end_time / 10)")
       .integer("energy_every", closed(1, 1e9), 10, "Steps between rows of energy.csv")
       .optional_quantity("checkpoint_interval", dims::time, positive(),
-                         "Simulated time between checkpoints (default: the snapshot interval)");
+                         "Simulated time between checkpoints (default: the snapshot interval)")
+      .integer("keep_snapshots", closed(0, 1e9), 0,
+               "Keep the first snapshot (t = 0) and the newest N others, deleting older ones as the run "
+               "writes new ones (0: keep all); a holes measure with `history = true` measures each as it "
+               "is written");
   return t;
 }
 

@@ -116,7 +116,14 @@ void SnapshotWriter::write(const Solver& solver) {
   fs::rename(tmp, path);
   entries_.push_back(std::move(entry));
   ++next_index_;
+  // The index first lists only what stays, then the files go (ParaView never sees a missing one).
+  std::vector<fs::path> dropped;
+  while (keep_newest_ > 0 && entries_.size() > keep_newest_ + 1) {
+    dropped.push_back(directory_ / entries_[1].file);
+    entries_.erase(entries_.begin() + 1);
+  }
   write_index();
+  for (const auto& f : dropped) fs::remove(f);
 }
 
 void SnapshotWriter::resume(std::int64_t last_step) {

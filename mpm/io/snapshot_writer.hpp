@@ -26,6 +26,9 @@ class SnapshotWriter {
   // Writes the solver's current state as the next snapshot and updates the index.
   void write(const Solver& solver);
   std::size_t count() const { return entries_.size(); }
+  // Keep the first snapshot (the state at t = 0, which hvi measure reads) and the newest `newest`
+  // others: each write then deletes the oldest of the rest (0, the default: keep all).
+  void keep_newest(std::size_t newest) { keep_newest_ = newest; }
 
   // For a resumed run: re-reads the snapshots written up to `last_step` and deletes later ones;
   // numbering continues after the last one kept (files deleted by hand leave gaps, and new
@@ -54,6 +57,7 @@ class SnapshotWriter {
   std::filesystem::path directory_;
   std::vector<Entry> entries_;
   std::size_t next_index_ = 0;  // of the next snapshot file
+  std::size_t keep_newest_ = 0;
 };
 
 }  // namespace hvi::mpm::io

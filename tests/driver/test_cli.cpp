@@ -538,6 +538,19 @@ TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
   EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos) << read(log);
   const auto files = std::distance(fs::directory_iterator(often / "snapshots"), fs::directory_iterator());
   EXPECT_EQ(files, 4);
+  // Keeping the newest one, at most two are on the disk at once: the newest, and the one it replaces.
+  const fs::path kept = scratch("disk_kept");
+  const std::string keep = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + kept.string() +
+                           " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us'" +
+                           " --set output.keep_snapshots=1 > " + log + " 2>&1";
+  ASSERT_EQ(std::system(keep.c_str()), 0);
+  EXPECT_NE(read(log).find("output: 2 snapshots of about"), std::string::npos) << read(log);
+  EXPECT_EQ(std::distance(fs::directory_iterator(kept / "snapshots"), fs::directory_iterator()), 2);
+  const std::string check_kept = hvi + " check " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --set 'run.end_time=1 us'" +
+                                 " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' --set output.keep_snapshots=1 > " +
+                                 log + " 2>&1";
+  ASSERT_EQ(std::system(check_kept.c_str()), 0);
+  EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos) << read(log);  // with the first
   // hvi check gives the whole run's: the 4 snapshots and the checkpoint twice.
   const std::string check = hvi + " check " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --set 'run.end_time=1 us'" +
                             " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' > " + log + " 2>&1";
@@ -567,11 +580,64 @@ TEST(Cli, TheRunsOwnHoleMeasurementIsTheStandaloneOne) {
   EXPECT_GT(summary_number(out, "peak_memory_bytes"), 0.0);
   EXPECT_GE(summary_number(out, "peak_memory_with_measure_bytes"), summary_number(out, "peak_memory_bytes"));
   const double D_f = summary_number(out, "D_f");
+  EXPECT_EQ(read(out / "timing.csv").find("measure the holes"), std::string::npos);  // no history asked for
+  EXPECT_FALSE(fs::exists(out / "holes_history.csv"));
   ASSERT_EQ(run("measure " + out.string()), 0);
   EXPECT_TRUE(read(out / "measurements.json") == own);
   const auto front_D = own.find("\"D\" : ");  // the front sheet's comes first
   ASSERT_NE(front_D, std::string::npos) << own;
   EXPECT_EQ(std::stod(own.substr(front_D + 6)), D_f);
+}
+
+// A holes measure with history = true measures each snapshot as the run writes it: its
+// holes_history.csv is what hvi measure --snapshot all writes afterwards, byte for byte, and the
+// run's final measurements.json is the standalone one. With output.keep_snapshots = 2 only the
+// first snapshot and the newest two stay (the index lists just those), yet the history, written as
+// the run went and rewritten from its checkpoint on a resume, has every row. The demo on 0.8 mm
+// cells to 1 us, a snapshot every 0.25 us.
+TEST(Cli, TheHoleHistoryIsHviMeasuresAndSurvivesKeepingOnlyTheNewestSnapshots) {
+  const std::string demo = " " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --threads 2 --set 'run.end_time=1 us'" +
+                           " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.25 us'" +
+                           " --set 'measure=[{name=\"holes\",kind=\"holes\",history=true}]'";
+  const fs::path all = scratch("history_all"), kept = scratch("history_kept");
+  ASSERT_EQ(run("run" + demo + " --out " + all.string()), 0);
+  const std::string history = read(all / "holes_history.csv");
+  const std::string final_holes = read(all / "measurements.json");
+  ASSERT_EQ(run("measure " + all.string() + " --snapshot all"), 0);
+  EXPECT_TRUE(read(all / "measurements_history.csv") == history) << history;
+  ASSERT_EQ(run("measure " + all.string()), 0);
+  EXPECT_TRUE(read(all / "measurements.json") == final_holes);
+  // Six lines: the header and t = 0, 0.25, 0.5, 0.75 and 1 us; the front sheet perforated by the end.
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(history);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  ASSERT_EQ(lines.size(), 6u) << history;
+  EXPECT_EQ(lines[0].rfind("run,time,step,", 0), 0u) << lines[0];
+  EXPECT_EQ(summary_number(all, "front_perforated"), 1.0);
+  // Its cost is a phase of its own, there only when the scene asks for the history.
+  EXPECT_NE(read(all / "timing.csv").find("\"measure the holes\","), std::string::npos);
+
+  // Keeping the newest two, stopped between snapshots and resumed.
+  ASSERT_EQ(run("run" + demo + " --out " + kept.string() + " --set 'output.keep_snapshots=2' --set run.max_steps=25"), 0);
+  ASSERT_EQ(run("run --resume " + kept.string() + " --threads 1 --set run.max_steps=0"), 0);
+  std::vector<std::string> files;
+  for (const auto& f : fs::directory_iterator(kept / "snapshots")) files.push_back(f.path().filename().string());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"particles_000000.h5", "particles_000003.h5", "particles_000004.h5"}));
+  const std::string index = read(kept / "particles.xmf");
+  for (const char* n : {"000000", "000003", "000004"}) EXPECT_NE(index.find(n), std::string::npos) << n;
+  for (const char* n : {"000001", "000002"}) EXPECT_EQ(index.find(n), std::string::npos) << n;
+  // The same rows but for the run column (the directory's name).
+  auto without_run = [](const std::string& csv) {
+    std::string out;
+    std::istringstream in(csv);
+    for (std::string line; std::getline(in, line);) out += line.substr(line.find(',')) + '\n';
+    return out;
+  };
+  EXPECT_EQ(without_run(read(kept / "holes_history.csv")), without_run(history));
+  EXPECT_TRUE(read(kept / "measurements.json").find("\"D\" : ") != std::string::npos);
 }
 
 // A body in free flight: every particle keeps its velocity and moves with the grid velocity,
