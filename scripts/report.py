@@ -358,12 +358,20 @@ FRONT, REAR = 1, 2  # columns of a hole history
 
 
 def hole_history(run_dir):
-    """(t, D_f, D_r) per snapshot from RUN/measurements_history.csv, in time order; None for NP."""
-    path = run_dir / "measurements_history.csv"
-    if not path.exists():
-        return None
-    rows = [(number(r.get("time")), number(r.get("D_f")), number(r.get("D_r"))) for r in csv_rows(path)]
-    return sorted((t, f, r) for t, f, r in rows if t is not None)
+    """(t, D_f, D_r) per snapshot, in time order; None for NP. From RUN/measurements_history.csv
+    (hvi measure --snapshot all) or RUN/holes_history.csv (the run's own, with a holes measure's
+    history = true), whichever has more rows: a run that kept only its newest snapshots has its
+    whole history in the second only."""
+    best = None
+    for name in ("measurements_history.csv", "holes_history.csv"):
+        path = run_dir / name
+        if not path.exists():
+            continue
+        rows = [(number(r.get("time")), number(r.get("D_f")), number(r.get("D_r"))) for r in csv_rows(path)]
+        rows = sorted((t, f, r) for t, f, r in rows if t is not None)
+        if best is None or len(rows) > len(best):
+            best = rows
+    return best
 
 
 def settling(h, column):

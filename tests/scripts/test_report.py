@@ -67,15 +67,26 @@ class Table5(unittest.TestCase):
 
 
 class HoleHistory(unittest.TestCase):
-    def write(self, root, name, rows, front=None):
+    def write(self, root, name, rows, front=None, file="measurements_history.csv"):
         """rows: (t in us, D_r in mm or None); front: D_f in mm per row (4 mm throughout if None)."""
         d = pathlib.Path(root) / name
-        d.mkdir()
+        d.mkdir(exist_ok=True)
         front = front or [4.0] * len(rows)
         lines = ["run,time,D_f,D_r"] + [f"{name},{t * 1e-6},{'' if f is None else f * 1e-3},{'' if r is None else r * 1e-3}"
                                         for (t, r), f in zip(rows, front)]
-        (d / "measurements_history.csv").write_text("\n".join(lines) + "\n")
+        (d / file).write_text("\n".join(lines) + "\n")
         return {"run": name, "dir": d}
+
+    def test_the_runs_own_history_and_the_longer_of_two(self):
+        # A run's own holes_history.csv is read as hvi measure's is; where hvi measure later read
+        # only the snapshots the run kept (output.keep_snapshots), the run's longer history counts.
+        with tempfile.TemporaryDirectory() as root:
+            own = self.write(root, "own", [(0, None), (8, 5.0), (10, 5.05)], file="holes_history.csv")
+            self.assertEqual(report.hole_history(own["dir"]), [(0.0, 4e-3, None), (8e-6, 4e-3, 5e-3), (10 * 1e-6, 4e-3, 5.05e-3)])
+            self.write(root, "own", [(0, None), (10, 5.05)])  # measurements_history.csv: t = 0 and the newest kept
+            self.assertEqual(len(report.hole_history(own["dir"])), 3)
+            self.write(root, "own", [(0, None), (2, None), (4, 3.0), (8, 5.0), (10, 5.05)])  # every snapshot kept
+            self.assertEqual(len(report.hole_history(own["dir"])), 5)
 
     def test_settled_growing_and_np(self):
         # settled: 5.00 mm at 8 us (0.8 of 10 us), 5.05 at 10 us: +1.0%, within 2%.
