@@ -1,5 +1,6 @@
 // hvi measure's outputs: the printed summary (mm), measurements.json, measurements.csv (SI) and,
 // on request, the top views as PGM images.
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -94,7 +95,6 @@ std::vector<std::pair<std::string, std::string>> csv_cells(const Measurements& m
   return c;
 }
 
-// One header line, then one row per measurement.
 // One CSV line of a measurement: its column names (header) or its values.
 void write_csv_line(std::ostream& out, const Measurements& m, bool header) {
   const auto cells = csv_cells(m);
@@ -102,6 +102,7 @@ void write_csv_line(std::ostream& out, const Measurements& m, bool header) {
   out << '\n';
 }
 
+// One header line, then one row per measurement.
 void write_csv(const std::vector<Measurements>& rows, const fs::path& file) {
   std::ofstream out(file);
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -220,7 +221,11 @@ void keep_history_rows(const fs::path& file, std::int64_t last_step) {
       const auto a = line.find(',');
       const auto b = a == std::string::npos ? a : line.find(',', a + 1);
       const auto c = b == std::string::npos ? b : line.find(',', b + 1);
-      if (!first && c != std::string::npos && std::stoll(line.substr(b + 1, c - b - 1)) > last_step) continue;
+      // (A line whose step does not parse, a file edited by hand, is kept rather than stopping the run.)
+      std::int64_t step = 0;
+      const bool parsed = c != std::string::npos &&
+                          std::from_chars(line.data() + b + 1, line.data() + c, step).ec == std::errc{};
+      if (!first && parsed && step > last_step) continue;
       kept += line + '\n';
     }
   }
