@@ -269,16 +269,31 @@ std::string first_difference(const toml::table& a, const toml::table& b, const s
 struct Existing {
   std::optional<double> end_time;  // continue to this end time
   std::string conflict;            // why the directory cannot be used
+  std::string own_measures;        // the study's [[measure]] differ from the run's, which it keeps: why
 };
 
 Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool finished) {
   Existing e;
   if (!fs::exists(dir / "scene.resolved.toml")) return e;
   const scene::Scene have = scene::load_scene((dir / "scene.resolved.toml").string());
-  // How far and how often it writes do not change what a run computes: not compared.
+  // How far and how often it writes, and what it measures, do not change what a run computes: not
+  // compared. A run resumed or run on keeps its own output and measures, as a finished one has them.
   toml::table a = wanted.resolved, b = have.resolved;
+  const auto measures = [](const toml::table& t) {
+    toml::table m;
+    if (const toml::node* n = t.get("measure")) m.insert("measure", *n);
+    return m;
+  };
+  if (!first_difference(measures(a), measures(b)).empty()) {
+    e.own_measures = "it keeps the [[measure]] it was started with (the study's differ)";
+    const bool history = std::any_of(wanted.measures.begin(), wanted.measures.end(),
+                                     [](const auto& m) { return m.kind == "holes" && m.history; });
+    if (history)
+      e.own_measures += fmt::format("; `hvi measure {} --snapshot all` measures its holes at every snapshot", dir.string());
+  }
   for (toml::table* t : {&a, &b}) {
     t->erase("output");
+    t->erase("measure");
     if (toml::table* r = (*t)["run"].as_table()) {
       r->erase("end_time");
       r->erase("max_steps");
@@ -354,8 +369,12 @@ int run_sweep(const SweepOptions& o) {
     const fs::path dir = fs::path(o.out) / run.name;
     RunSummary summary = read_run_summary(dir);
     const std::optional<double> extend = existing[run.name].end_time;
+    const auto say_own_measures = [&] {
+      if (!existing[run.name].own_measures.empty()) fmt::print("    {}\n", existing[run.name].own_measures);
+    };
     if (summary.finished() && !extend) {
       fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name, summary.wall_seconds);
+      say_own_measures();
     } else {
       std::vector<std::string> args;
       const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
@@ -373,6 +392,7 @@ int run_sweep(const SweepOptions& o) {
                  : extend && summary.finished()
                      ? fmt::format("running on to {:g} us", *extend * 1e6)
                      : "resuming");
+      if (resume) say_own_measures();
       std::fflush(stdout);
       const auto start = std::chrono::steady_clock::now();
       // The log names the run (the base scene's title is the same for every run) and keeps the

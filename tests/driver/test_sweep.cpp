@@ -158,6 +158,22 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
             0)
       << read(log);
   EXPECT_NE(read(log).find("v200_r15: done"), std::string::npos) << read(log);
+  EXPECT_EQ(read(log).find("it keeps the [[measure]]"), std::string::npos) << read(log);
+
+  // Nor is another list of measures: a done run keeps those it was run with, its row unchanged,
+  // and the console says so.
+  const std::string measured = read(out / "sweep.csv");
+  const std::string other_measure = R"( --set 'measure=[{name="back",kind="extent_min",axis="x"}]')";
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us" + other_measure, log),
+            0)
+      << read(log);
+  const std::string said = read(log);
+  const auto done = said.find("v200_r15: done");
+  ASSERT_NE(done, std::string::npos) << said;
+  EXPECT_EQ(said.find("    it keeps the [[measure]] it was started with (the study's differ)\n", done),
+            said.find('\n', done) + 1)
+      << said;
+  EXPECT_EQ(read(out / "sweep.csv"), measured);
 
   // An earlier end time, or any other key changed, is refused before anything runs.
   const std::string after = read(out / "sweep.csv");
@@ -168,6 +184,17 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
             2);
   EXPECT_NE(read(log).find("key 'grid.cfl' differs"), std::string::npos) << read(log);
   EXPECT_EQ(read(out / "sweep.csv"), after);
+
+  // Run on with other measures, a run keeps its own: the sphere's front, 0.4 mm ahead per 100 m/s.
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=4us" + other_measure, log),
+            0)
+      << read(log);
+  EXPECT_NE(read(log).find("v200_r15: running on to 4 us...\n    it keeps the [[measure]] it was started with"),
+            std::string::npos)
+      << read(log);
+  rows = table(out / "sweep.csv");
+  EXPECT_NEAR(front("v200_r1") - front("v100_r1"), 0.4e-3, 1e-12);
+  EXPECT_EQ(rows["v200_r1"].count("back"), 0u);
 }
 
 TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
