@@ -279,12 +279,7 @@ Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool 
   // How far and how often it writes, and what it measures, do not change what a run computes: not
   // compared. A run resumed or run on keeps its own output and measures, as a finished one has them.
   toml::table a = wanted.resolved, b = have.resolved;
-  const auto measures = [](const toml::table& t) {
-    toml::table m;
-    if (const toml::node* n = t.get("measure")) m.insert("measure", *n);
-    return m;
-  };
-  if (!first_difference(measures(a), measures(b)).empty()) {
+  if (a["measure"] != b["measure"]) {
     e.own_measures = "it keeps the [[measure]] it was started with (the study's differ)";
     const bool history = std::any_of(wanted.measures.begin(), wanted.measures.end(),
                                      [](const auto& m) { return m.kind == "holes" && m.history; });
