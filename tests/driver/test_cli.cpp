@@ -20,42 +20,20 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/driver/cli_run.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
+using hvi::test::csv_rows;
+using hvi::test::read;
+using hvi::test::run;
+using hvi::test::scratch;
+
 const std::string hvi = HVI_BINARY;
 const std::string scene = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_spheres.toml";
 const std::string hybrid = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml";
-
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::path(testing::TempDir()) / ("hvi_cli_" + name);
-  fs::remove_all(p);
-  return p;
-}
-
-// Runs hvi with `args`; returns its exit code, stderr in `err`.
-int run(const std::string& args, std::string* err = nullptr) {
-  // One file per test: ctest runs the tests of this file in parallel.
-  const fs::path log = fs::path(testing::TempDir()) /
-                       ("hvi_cli_stderr_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt");
-  const std::string cmd = hvi + " " + args + " > /dev/null 2> " + log.string();
-  const int status = std::system(cmd.c_str());
-  if (err) {
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    *err = s.str();
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // A number of a run's summary.toml, at the top level or in [measures] (NaN when absent).
 double summary_number(const fs::path& run_dir, const std::string& key) {
@@ -265,22 +243,6 @@ TEST(Cli, EnergyRunawayStopsTheRun) {
 }
 
 // Rows of a CSV file as numbers (header skipped), and the header.
-std::vector<std::vector<double>> csv_rows(const fs::path& p, std::string* header = nullptr) {
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);
-  if (header) *header = line;
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 // The small hybrid: the far field's momentum and energy enter the balance. No boundary acts
 // along z (the symmetry planes are x = 0 and y = 0), so the z momentum of particles plus far
 // field is conserved exactly; the energy is conserved to what the same impact on an all-MPM

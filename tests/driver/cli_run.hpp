@@ -1,0 +1,66 @@
+#pragma once
+// Running the hvi binary from a test and reading what a run wrote: shared by the tests that drive
+// the command line end to end (test_cli.cpp, test_pure_versus_hybrid.cpp).
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace hvi::test {
+
+namespace fs = std::filesystem;
+
+// A fresh directory for a run, under the test's temporary directory.
+inline fs::path scratch(const std::string& name) {
+  const fs::path p = fs::path(testing::TempDir()) / ("hvi_cli_" + name);
+  fs::remove_all(p);
+  return p;
+}
+
+// Runs hvi with `args`; returns its exit code, stderr in `err`.
+inline int run(const std::string& args, std::string* err = nullptr) {
+  // One file per test: ctest runs the tests of a file in parallel.
+  const fs::path log = fs::path(testing::TempDir()) /
+                       ("hvi_cli_stderr_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt");
+  const std::string cmd = std::string(HVI_BINARY) + " " + args + " > /dev/null 2> " + log.string();
+  const int status = std::system(cmd.c_str());
+  if (err) {
+    std::ifstream in(log);
+    std::stringstream s;
+    s << in.rdbuf();
+    *err = s.str();
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+inline std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The rows of a CSV file of numbers (energy.csv, probes.csv); its header line in `header`.
+inline std::vector<std::vector<double>> csv_rows(const fs::path& p, std::string* header = nullptr) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  if (header) *header = line;
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace hvi::test
