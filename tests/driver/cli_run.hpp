@@ -3,6 +3,7 @@
 // the command line end to end (test_cli.cpp, test_pure_versus_hybrid.cpp).
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +45,17 @@ inline std::string read(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A number of a run's summary.toml, at the top level or in [measures] (NaN when absent).
+inline double summary_number(const fs::path& run_dir, const std::string& key) {
+  std::string summary = read(run_dir / "summary.toml");
+  summary.insert(summary.begin(), '\n');
+  std::string line_start = key;
+  line_start.insert(line_start.begin(), '\n');
+  line_start.append(" = ");
+  const auto at = summary.find(line_start);
+  return at == std::string::npos ? std::nan("") : std::stod(summary.substr(at + line_start.size()));
 }
 
 // The rows of a CSV file of numbers (energy.csv, probes.csv); its header line in `header`.

@@ -30,21 +30,11 @@ using hvi::test::csv_rows;
 using hvi::test::read;
 using hvi::test::run;
 using hvi::test::scratch;
+using hvi::test::summary_number;
 
 const std::string hvi = HVI_BINARY;
 const std::string scene = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_spheres.toml";
 const std::string hybrid = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml";
-
-// A number of a run's summary.toml, at the top level or in [measures] (NaN when absent).
-double summary_number(const fs::path& run_dir, const std::string& key) {
-  std::string summary = read(run_dir / "summary.toml");
-  summary.insert(summary.begin(), '\n');
-  std::string line_start = key;
-  line_start.insert(line_start.begin(), '\n');
-  line_start.append(" = ");
-  const auto at = summary.find(line_start);
-  return at == std::string::npos ? std::nan("") : std::stod(summary.substr(at + line_start.size()));
-}
 
 // Every snapshot file, energy.csv and the XDMF index of two runs are byte-identical; `a` has
 // `snapshots` snapshot files (by default the scene's t = 0, 1, 2, 3, 4 us).
