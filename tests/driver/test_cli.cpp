@@ -232,7 +232,6 @@ TEST(Cli, EnergyRunawayStopsTheRun) {
   EXPECT_NE(err.find("this particle moves fastest"), std::string::npos) << err;
 }
 
-// Rows of a CSV file as numbers (header skipped), and the header.
 // The small hybrid: the far field's momentum and energy enter the balance. No boundary acts
 // along z (the symmetry planes are x = 0 and y = 0), so the z momentum of particles plus far
 // field is conserved exactly; the energy is conserved to what the same impact on an all-MPM
