@@ -38,13 +38,17 @@ def body_indices(run, names):
 
 def held_share(run, axis):
     """The share of a ring about the axis the model holds: 1/2 per symmetry plane through it."""
-    scene = tomllib.loads((run / "scene.resolved.toml").read_text())
-    share = 1.0
-    for d, letter in enumerate("xy"):
-        if any(b.get("type") == "symmetry" and b.get("face", "")[0] == letter
-               and abs(b.get("position", np.nan) - axis[d]) < 1e-12 for b in scene.get("boundary", [])):
-            share /= 2.0
-    return share
+    path = run / "scene.resolved.toml"
+    planes = set()
+    for b in tomllib.loads(path.read_text()).get("boundary", []):
+        if b.get("type") != "symmetry" or str(b.get("face", ""))[:1] not in ("x", "y"):
+            continue
+        if "position" not in b:
+            raise ValueError(f"{path}: a symmetry boundary on face {b['face']} has no position")
+        d = "xy".index(b["face"][0])
+        if abs(b["position"] - axis[d]) < 1e-12:
+            planes.add(d)
+    return 0.5 ** len(planes)
 
 
 def profile(run, bodies, z_range, axis, width, radius, quantity="areal_mass"):
