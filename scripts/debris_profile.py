@@ -17,7 +17,6 @@ snapshot (time in s, then one value per ring, its column named after the ring in
 standard error the share of each ring the model holds.
 """
 import argparse
-import json
 import pathlib
 import sys
 import tomllib
@@ -25,15 +24,8 @@ import tomllib
 import h5py
 import numpy as np
 
+from failure_history import body_index, snapshot_paths
 from probe_history import length  # a length with a unit, "0.5 mm"
-
-
-def body_indices(run, names):
-    bodies = json.loads((run / "run.json").read_text())["bodies"]
-    for name in names:
-        if name not in bodies:
-            raise ValueError(f"--bodies '{name}': the run's bodies are {', '.join(bodies)}")
-    return [bodies.index(name) for name in names]
 
 
 def held_share(run, axis):
@@ -53,10 +45,8 @@ def held_share(run, axis):
 
 def profile(run, bodies, z_range, axis, width, radius, quantity="areal_mass"):
     run = pathlib.Path(run)
-    snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
-    if not snapshots:
-        raise ValueError(f"{run}/snapshots: no particle snapshots")
-    chosen = body_indices(run, bodies)
+    snapshots = snapshot_paths(run)
+    chosen = [body_index(run, name, "--bodies") for name in bodies]
     share = held_share(run, axis)
     n = int(round(radius / width))
     edges = width * np.arange(n + 1)

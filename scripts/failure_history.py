@@ -40,11 +40,19 @@ import numpy as np
 from probe_history import length  # a length with a unit, "0.5 mm"
 
 
-def body_index(run, name):
+def body_index(run, name, option="--body"):
     bodies = json.loads((run / "run.json").read_text())["bodies"]
     if name not in bodies:
-        raise ValueError(f"--body '{name}': the run's bodies are {', '.join(bodies)}")
+        raise ValueError(f"{option} '{name}': the run's bodies are {', '.join(bodies)}")
     return bodies.index(name)
+
+
+def snapshot_paths(run):
+    """A run's particle snapshots in time order; none is an error."""
+    snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
+    if not snapshots:
+        raise ValueError(f"{run}/snapshots: no particle snapshots")
+    return snapshots
 
 
 def groups(x0, by, axis, width, radius):
@@ -115,9 +123,7 @@ def undeformed_positions(snapshots, b):
 
 def history(run, body, by, axis, width, radius, quantity="failed"):
     run = pathlib.Path(run)
-    snapshots = sorted((run / "snapshots").glob("particles_*.h5"))
-    if not snapshots:
-        raise ValueError(f"{run}/snapshots: no particle snapshots")
+    snapshots = snapshot_paths(run)
     b = body_index(run, body)
     ids, x0 = undeformed_positions(snapshots, b)
     if ids.size == 0:
