@@ -8,7 +8,7 @@ area of chosen bodies' points within a slab of z, in rings about the axis, at ev
 
 A point counts where it is at the snapshot (failed or not), if its z lies in the slab (the two
 --z bounds in either order) and its distance from the axis (parallel to z through --axis) lies
-in a ring of width --bin out to --radius (default 8 bins). --quantity areal_mass (default): the
+in a ring of width --bin out to --radius (a whole number of rings, default 8). --quantity areal_mass (default): the
 points' mass over the ring's area, kg/m^2. A model cut by symmetry planes through the axis (a
 `symmetry` boundary of the run's scene.resolved.toml on x = axis X or y = axis Y) holds half or
 a quarter of each ring, and the area is that part's. velocity_z: the median z-velocity of the
@@ -49,6 +49,8 @@ def profile(run, bodies, z_range, axis, width, radius, quantity="areal_mass"):
     chosen = [body_index(run, name, "--bodies") for name in bodies]
     share = held_share(run, axis)
     n = int(round(radius / width))
+    if n < 1 or abs(n * width - radius) > 1e-9 * radius:
+        raise ValueError(f"--radius {radius * 1e3:g} mm is not a whole number of {width * 1e3:g} mm rings")
     edges = width * np.arange(n + 1)
     area = share * np.pi * (edges[1:] ** 2 - edges[:-1] ** 2)
     names = [f"r_{edges[i] * 1e3:g}_{edges[i + 1] * 1e3:g}_mm" for i in range(n)]
@@ -61,7 +63,7 @@ def profile(run, bodies, z_range, axis, width, radius, quantity="areal_mass"):
             mine = np.isin(f["body"][:], chosen) & (x[:, 2] >= z_low) & (x[:, 2] <= z_high)
             r = np.hypot(x[mine, 0] - axis[0], x[mine, 1] - axis[1])
             ring = np.floor(r / width).astype(int)
-            inside = (ring < n) & (r < radius)
+            inside = ring < n
             if quantity == "areal_mass":
                 mass = f["mass"][:][mine][inside]
                 rows.append((time, np.bincount(ring[inside], weights=mass, minlength=n) / area))

@@ -103,6 +103,9 @@ class DebrisProfile(unittest.TestCase):
         code, lines, err = run_script(run, "--bodies", "projectile", "--z", "-1 mm")
         self.assertEqual((code, lines), (2, []))
         self.assertIn("--z '-1 mm': expected two lengths", err)
+        code, lines, err = run_script(run, "--bodies", "projectile", "--z", "0 mm,-1 mm", "--radius", "1.2 mm")
+        self.assertEqual((code, lines), (2, []))
+        self.assertIn("--radius 1.2 mm is not a whole number of 0.5 mm rings", err)
 
 
 if __name__ == "__main__":
