@@ -8,8 +8,8 @@ area of chosen bodies' points within a slab of z, in rings about the axis, at ev
 
 A point counts where it is at the snapshot (failed or not), if its z lies in the slab (the two
 --z bounds in either order) and its distance from the axis (parallel to z through --axis) lies
-in a ring of width --bin out to --radius (a whole number of rings, default 8). --quantity areal_mass (default): the
-points' mass over the ring's area, kg/m^2. A model cut by symmetry planes through the axis (a
+in a ring of width --bin out to --radius (a whole number of rings, default 8). --quantity
+areal_mass (default): the points' mass over the ring's area, kg/m^2. A model cut by symmetry planes through the axis (a
 `symmetry` boundary of the run's scene.resolved.toml on x = axis X or y = axis Y) holds half or
 a quarter of each ring, and the area is that part's. velocity_z: the median z-velocity of the
 ring's points, m/s (NaN when it holds none). Output: CSV on standard output, one row per
@@ -25,7 +25,7 @@ import h5py
 import numpy as np
 
 from failure_history import body_index, snapshot_paths
-from probe_history import length  # a length with a unit, "0.5 mm"
+from probe_history import length, lengths  # lengths with units, "0.5 mm"
 
 
 def held_share(run, axis):
@@ -91,12 +91,8 @@ def main(argv=None):
         radius = length(args.radius) if args.radius else 8 * width
         if not (width > 0 and radius > 0):
             raise ValueError("--bin and --radius must be positive")
-        pairs = {"--axis": args.axis.split(","), "--z": args.z.split(",")}
-        for option, parts in pairs.items():
-            if len(parts) != 2:
-                raise ValueError(f"{option} '{getattr(args, option[2:])}': expected two lengths")
-        axis = [length(p) for p in pairs["--axis"]]
-        z_range = [length(p) for p in pairs["--z"]]
+        axis = lengths("--axis", args.axis, "X,Y")
+        z_range = lengths("--z", args.z, "Z1,Z2")
         names, share, rows = profile(args.run, args.bodies.split(","), z_range, axis, width, radius,
                                      args.quantity)
     except (OSError, KeyError, ValueError, tomllib.TOMLDecodeError) as e:

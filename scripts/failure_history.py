@@ -37,7 +37,7 @@ import sys
 import h5py
 import numpy as np
 
-from probe_history import length  # a length with a unit, "0.5 mm"
+from probe_history import length, lengths  # lengths with units, "0.5 mm"
 
 
 def body_index(run, name, option="--body"):
@@ -178,12 +178,10 @@ def main(argv=None):
     try:
         width = length(args.bin)
         radius = length(args.radius) if args.radius else 8 * width
-        parts = args.axis.split(",")
-        if len(parts) != 2:
-            raise ValueError(f"--axis '{args.axis}': expected two lengths X,Y")
+        axis = lengths("--axis", args.axis, "X,Y")
         if not (width > 0 and radius > 0):
             raise ValueError("--bin and --radius must be positive")
-        names, counts, rows = history(args.run, args.body, args.by, [length(p) for p in parts], width, radius,
+        names, counts, rows = history(args.run, args.body, args.by, axis, width, radius,
                                       args.quantity)
     except (OSError, KeyError, ValueError) as e:
         print(f"failure_history.py: {e}", file=sys.stderr)

@@ -44,6 +44,15 @@ def length(text):
     return float(m.group(1)) * UNITS.get(m.group(2), 1.0)
 
 
+def lengths(option, text, names):
+    """An option's comma-separated lengths, one per name of `names` ("X,Y,Z")."""
+    parts = text.split(",")
+    count = len(names.split(","))
+    if len(parts) != count:
+        raise ValueError(f"{option} '{text}': expected {['one', 'two', 'three'][count - 1]} lengths {names}")
+    return [length(p) for p in parts]
+
+
 def vtu_arrays(path):
     """The DataArrays of a VTU file written by deal.II (binary, zlib-compressed or not, or ascii),
     by Name (the unnamed point coordinates as 'points')."""
@@ -182,10 +191,7 @@ def main(argv=None):
     parser.add_argument("--axis", default="z", choices=["x", "y", "z"], help="displacement component (default z)")
     args = parser.parse_args(argv)
     try:
-        parts = args.point.split(",")
-        if len(parts) != 3:
-            raise ValueError(f"--point '{args.point}': expected three lengths X,Y,Z")
-        point = np.array([length(p) for p in parts])
+        point = np.array(lengths("--point", args.point, "X,Y,Z"))
         rows, what = history(args.run, point, "xyz".index(args.axis))
     except (OSError, KeyError, ValueError) as e:
         print(f"probe_history.py: {e}", file=sys.stderr)
