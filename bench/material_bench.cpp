@@ -5,6 +5,8 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include "bench/phase_counters.hpp"
+
 #include "cases/driver/build_solver.hpp"
 #include "cases/driver/scene.hpp"
 
@@ -51,6 +53,7 @@ void TaylorBar(benchmark::State& state, const Rung& rung) {
   const auto scene = hvi::scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/taylor_bar.toml", overrides);
   const int steps = 100;
   double particles = 0, bytes = 0;
+  hvi::mpm::PhaseTimer phases;
   for (auto _ : state) {
     state.PauseTiming();
     auto solver = hvi::driver::make_solver(scene);
@@ -61,12 +64,14 @@ void TaylorBar(benchmark::State& state, const Rung& rung) {
     state.PauseTiming();
     particles = static_cast<double>(solver->particles().size());
     bytes = static_cast<double>(solver->bytes());
+    phases = solver->timer();
     state.ResumeTiming();
   }
   state.counters["threads"] = static_cast<double>(state.range(0));
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(particles * steps * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["bytes_per_particle"] = bytes / particles;
+  hvi::bench::add_phase_counters(state, phases);
 }
 
 const bool registered = [] {

@@ -4,6 +4,8 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include "bench/phase_counters.hpp"
+
 #include "bench/block_setup.hpp"
 
 namespace {
@@ -19,6 +21,7 @@ void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
   if (contact) settings.contact = hvi::mpm::ContactSettings{};
   const int steps = 100;
   double particles = 0, bytes = 0;
+  hvi::mpm::PhaseTimer phases;
   for (auto _ : state) {
     state.PauseTiming();
     auto solver = hvi::bench::elastic_block(50, 2, settings);
@@ -27,6 +30,7 @@ void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
     state.PauseTiming();
     particles = static_cast<double>(solver->particles().size());
     bytes = static_cast<double>(solver->bytes());
+    phases = solver->timer();
     state.ResumeTiming();
   }
   state.counters["particles"] = particles;
@@ -34,6 +38,7 @@ void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(particles * steps * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["bytes_per_particle"] = bytes / particles;
+  hvi::bench::add_phase_counters(state, phases);
 }
 
 // The reference workload: linear shape functions.

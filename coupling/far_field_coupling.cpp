@@ -86,7 +86,7 @@ void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, 
   // fraction a step) this step's dt: the strain rate of rate-dependent J2 facesheets.
   if (stage == mpm::GridStage::force) far_field_.internal_force(force_, dt);
   for (const Tie& t : ties_) {
-    mpm::GridNode* node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
+    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);  // requested: active
     const double wm = t.weight * m[t.node];
     const std::size_t i = 3 * t.node;
     switch (stage) {
@@ -109,7 +109,7 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
   std::fill(increment_.begin(), increment_.end(), 0.0);
   std::fill(nodal_velocity_.begin(), nodal_velocity_.end(), 0.0);
   for (const Tie& t : ties_) {
-    const mpm::GridNode* node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
+    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
     const std::size_t i = 3 * t.node;
     for (int d = 0; d < 3; ++d) {
       increment_[i + d] += t.weight * node->f[d];

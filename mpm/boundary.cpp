@@ -11,8 +11,8 @@ void apply_grid_conditions(SparseGrid& grid, const std::vector<GridBoundary>& co
   constexpr int E = SparseGrid::block_edge;
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b) {
-    const auto origin = grid.block_origin(static_cast<std::uint32_t>(b));
-    GridNode* nodes = grid.block(static_cast<std::uint32_t>(b));
+    const auto block = static_cast<std::uint32_t>(b);
+    const auto origin = grid.block_origin(block);
     for (const auto& c : conditions) {
       // Range of local indices along the axis that the condition covers.
       int lo = 0, hi = E - 1;
@@ -26,7 +26,7 @@ void apply_grid_conditions(SparseGrid& grid, const std::vector<GridBoundary>& co
           for (int lx = 0; lx < E; ++lx) {
             const int l[3] = {lx, ly, lz};
             if (l[c.axis] < lo || l[c.axis] > hi) continue;
-            GridNode& n = nodes[local_node(lx, ly, lz)];
+            const GridNode n = grid.node(block, local_node(lx, ly, lz));
             if (c.type == BoundaryType::fixed) {
               for (int d = 0; d < 3; ++d) n.p[d] = n.f[d] = n.q[d] = 0.0;
             } else {
@@ -37,27 +37,27 @@ void apply_grid_conditions(SparseGrid& grid, const std::vector<GridBoundary>& co
   }
 }
 
+std::vector<MirrorPlane> mirror_planes(const GridGeometry& geometry,
+                                       const std::vector<GridBoundary>& conditions) {
+  std::vector<MirrorPlane> planes;
+  for (const auto& c : conditions)
+    if (c.type == BoundaryType::symmetry)
+      planes.push_back({c.axis, geometry.origin[c.axis] + c.plane * geometry.cell_size,
+                        c.outside_below ? 1.0 : -1.0});
+  return planes;
+}
+
 std::size_t reflect_at_symmetry_planes(Particles& particles, const GridGeometry& geometry,
                                        const std::vector<GridBoundary>& conditions) {
   std::size_t reflected = 0;
   const auto n = static_cast<std::int64_t>(particles.size());
-  for (const auto& c : conditions) {
-    if (c.type != BoundaryType::symmetry) continue;
-    const int d = c.axis;
-    const double plane = geometry.origin[d] + c.plane * geometry.cell_size;
-    const double side = c.outside_below ? 1.0 : -1.0;  // + where the material is
-    double* x = particles.position.data();
-    double* v = particles.velocity.data();
-    double* vg = particles.grid_velocity.data();
+  double* x = particles.position.data();
+  double* v = particles.velocity.data();
+  double* vg = particles.grid_velocity.data();
+  for (const auto& m : mirror_planes(geometry, conditions)) {
 #pragma omp parallel for schedule(static) reduction(+ : reflected)
-    for (std::int64_t p = 0; p < n; ++p) {
-      const double depth = side * (plane - x[3 * p + d]);  // > 0: beyond the plane
-      if (!(depth > 0.0)) continue;
-      x[3 * p + d] = plane + side * depth;
-      v[3 * p + d] = -v[3 * p + d];
-      vg[3 * p + d] = -vg[3 * p + d];
-      ++reflected;
-    }
+    for (std::int64_t p = 0; p < n; ++p)
+      if (reflect(m, &x[3 * p], &v[3 * p], &vg[3 * p])) ++reflected;
   }
   return reflected;
 }

@@ -38,4 +38,25 @@ void apply_grid_conditions(SparseGrid& grid, const std::vector<GridBoundary>& co
 std::size_t reflect_at_symmetry_planes(Particles& particles, const GridGeometry& geometry,
                                        const std::vector<GridBoundary>& conditions);
 
+// A symmetry plane as the reflection sees it: its axis, coordinate and the side the material is on.
+struct MirrorPlane {
+  int axis;
+  double position;  // m
+  double side;      // +1: material above the plane, -1: below
+};
+std::vector<MirrorPlane> mirror_planes(const GridGeometry& geometry,
+                                       const std::vector<GridBoundary>& conditions);
+
+// The reflection of one point (position x, velocity v, grid velocity vg) at a plane it crossed.
+// Returns whether it had crossed.
+inline bool reflect(const MirrorPlane& m, double* x, double* v, double* vg) {
+  const int d = m.axis;
+  const double depth = m.side * (m.position - x[d]);  // > 0: beyond the plane
+  if (!(depth > 0.0)) return false;
+  x[d] = m.position + m.side * depth;
+  v[d] = -v[d];
+  vg[d] = -vg[d];
+  return true;
+}
+
 }  // namespace hvi::mpm

@@ -51,7 +51,7 @@ void velocity(const GridNode& n, NodalVelocity which, double* v) {
   for (int d = 0; d < 3; ++d)
     v[d] = which == NodalVelocity::start ? n.p[d] : which == NodalVelocity::end ? n.p[d] + n.f[d] : n.q[d];
 }
-double* corrected(GridNode& n, NodalVelocity which) {
+GridNode::Vector corrected(const GridNode& n, NodalVelocity which) {
   return which == NodalVelocity::start ? n.p : which == NodalVelocity::end ? n.f : n.q;
 }
 
@@ -63,26 +63,29 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
   const bool remapped = which == NodalVelocity::remapped;
   if (which == NodalVelocity::end || in_contact_.size() != nodes) in_contact_.assign(nodes, 0);
   block_work_.assign(static_cast<std::size_t>(blocks), 0.0);
-  const GridNode* base0 = grid0.block(0);
-  const GridNode* base1 = grid_.block(0);
   const double mu = settings_.friction;
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b) {
     const std::uint32_t b0 = grid0.find(grid_.key(static_cast<std::uint32_t>(b)));
     if (b0 == SparseGrid::none) continue;
-    GridNode* nodes1 = grid_.block(static_cast<std::uint32_t>(b));
-    GridNode* nodes0 = grid0.block(b0);
     double work = 0.0;
     for (int l = 0; l < SparseGrid::block_size; ++l) {
-      GridNode& n1 = nodes1[l];
-      GridNode& n0 = nodes0[l];
+      const GridNode n1 = grid_.node(static_cast<std::uint32_t>(b), l);
+      const GridNode n0 = grid0.node(b0, l);
       const double m0 = n0.mass, m1 = n1.mass;
       if (m0 <= 0.0 || m1 <= 0.0) continue;
-      const std::size_t node1 = static_cast<std::size_t>(&n1 - base1);
+      // Nodes are numbered block by block, 64 a block (the normals' order).
+      const std::size_t node1 =
+          static_cast<std::size_t>(b) * SparseGrid::block_size + static_cast<std::size_t>(l);
       if (remapped && !in_contact_[node1]) continue;
-      const double* g0 = &normal0_[3 * static_cast<std::size_t>(&n0 - base0)];
-      const double* g1 = &normal1_[3 * node1];
-      double n[3] = {g1[0] - g0[0], g1[1] - g0[1], g1[2] - g0[2]};
+      // g_k of the node (transfers.hpp: three arrays of 64 per block).
+      const auto normal = [&](const std::vector<double>& g, std::size_t block, int d) {
+        return g[(3 * block + static_cast<std::size_t>(d)) * SparseGrid::block_size +
+                 static_cast<std::size_t>(l)];
+      };
+      double n[3];
+      for (int d = 0; d < 3; ++d)
+        n[d] = normal(normal1_, static_cast<std::size_t>(b), d) - normal(normal0_, b0, d);
       const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(length > 0.0)) continue;
       for (double& c : n) c /= length;
@@ -110,8 +113,7 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
       const double slip = t_length > 0.0 ? t_change / t_length : 0.0;
       // dw: the change of the relative velocity; field 1 takes m0 / M of it, field 0 m1 / M.
       const double M = m0 + m1;
-      double* c0 = corrected(n0, which);
-      double* c1 = corrected(n1, which);
+      const GridNode::Vector c0 = corrected(n0, which), c1 = corrected(n1, which);
       for (int d = 0; d < 3; ++d) {
         const double dw = -wn * n[d] - slip * tangent[d];
         c0[d] -= (m1 / M) * dw;

@@ -77,14 +77,13 @@ void SparseGrid::grow_table() {
 }
 
 void SparseGrid::allocate_nodes() {
-  const std::size_t n = keys_.size() * static_cast<std::size_t>(block_size);
-  if (nodes_.size() < n) nodes_.resize(n);
+  const std::size_t n = keys_.size() * static_cast<std::size_t>(block_values);
+  if (values_.size() < n) values_.resize(n);
   // Zero in parallel: first touch also places pages near the thread that will use them.
-  GridNode* data = nodes_.data();
+  double* data = values_.data();
   const auto blocks = static_cast<std::int64_t>(keys_.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < blocks; ++b)
-    std::memset(static_cast<void*>(data + b * block_size), 0, sizeof(GridNode) * block_size);
+  for (std::int64_t b = 0; b < blocks; ++b) std::fill_n(data + b * block_values, block_values, 0.0);
 }
 
 std::array<int, 3> SparseGrid::block_origin(std::uint32_t b) const {
@@ -93,20 +92,24 @@ std::array<int, 3> SparseGrid::block_origin(std::uint32_t b) const {
           c[2] * block_edge - index_shift};
 }
 
-const GridNode* SparseGrid::node(int i, int j, int k) const {
+std::optional<ConstGridNode> SparseGrid::node(int i, int j, int k) const {
   const std::uint32_t b = find(key_of_node(i, j, k));
-  if (b == none) return nullptr;
+  if (b == none) return std::nullopt;
   const int lx = (i + index_shift) % block_edge, ly = (j + index_shift) % block_edge,
             lz = (k + index_shift) % block_edge;
-  return block(b) + local_node(lx, ly, lz);
+  return node(b, local_node(lx, ly, lz));
 }
 
-GridNode* SparseGrid::node(int i, int j, int k) {
-  return const_cast<GridNode*>(std::as_const(*this).node(i, j, k));
+std::optional<GridNode> SparseGrid::node(int i, int j, int k) {
+  const std::uint32_t b = find(key_of_node(i, j, k));
+  if (b == none) return std::nullopt;
+  const int lx = (i + index_shift) % block_edge, ly = (j + index_shift) % block_edge,
+            lz = (k + index_shift) % block_edge;
+  return node(b, local_node(lx, ly, lz));
 }
 
 std::size_t SparseGrid::bytes() const {
-  return nodes_.capacity() * sizeof(GridNode) + keys_.capacity() * sizeof(std::uint64_t) +
+  return values_.capacity() * sizeof(double) + keys_.capacity() * sizeof(std::uint64_t) +
          table_keys_.capacity() * sizeof(std::uint64_t) +
          table_values_.capacity() * sizeof(std::uint32_t);
 }

@@ -5,7 +5,7 @@
 // step, as MPM discards the deformed grid (paper Sec. 2.3, step 7).
 #include <array>
 #include <cstdint>
-#include <span>
+#include <optional>
 #include <vector>
 
 #include "mpm/types.hpp"
@@ -21,22 +21,42 @@ struct GridGeometry {
   bool contains(const double* x) const;
 };
 
-// One grid node. The vectors change meaning during a step:
+// The values of a grid node. The vectors change meaning during a step:
 //   after particles_to_grid: p = momentum (kg m/s), f = force (N)
 //   after update_grid:       p = velocity at the start of the step v_n (m/s),
 //                            f = velocity increment dt f / m over the step (m/s)
 //   q: the MUSL remap, momentum of the updated particle velocities, then their nodal velocity
-struct GridNode {
-  double mass;
-  double p[3];
-  double f[3];
-  double q[3];
+// A block stores each of them as an array of its 64 nodes (structure of arrays), so a pass reads
+// and writes only the components it uses, four nodes of a row at a time.
+namespace node_value {
+constexpr int mass = 0, p = 1, f = 4, q = 7, count = 10;  // first component of each
+constexpr int block_size = 64;
+}  // namespace node_value
+
+// One node: a view of its values in its block's arrays (T = double, or const double).
+template <class T>
+struct NodeView {
+  struct Vector {
+    T* at;
+    T& operator[](int d) const { return at[d * node_value::block_size]; }
+  };
+  explicit NodeView(T* first)
+      : mass(first[node_value::mass * node_value::block_size]),
+        p{first + node_value::p * node_value::block_size},
+        f{first + node_value::f * node_value::block_size},
+        q{first + node_value::q * node_value::block_size} {}
+  T& mass;
+  Vector p, f, q;
 };
+using GridNode = NodeView<double>;
+using ConstGridNode = NodeView<const double>;
 
 class SparseGrid {
  public:
   static constexpr int block_edge = 4;
   static constexpr int block_size = block_edge * block_edge * block_edge;
+  static_assert(block_size == node_value::block_size);
+  static constexpr int block_values = node_value::count * block_size;  // doubles a block stores
   // Node indices are shifted by one block so that stencils of particles at the lower domain faces
   // (GIMP reaches one node below) have non-negative block coordinates.
   static constexpr int index_shift = block_edge;
@@ -71,24 +91,31 @@ class SparseGrid {
 
   std::size_t block_count() const { return keys_.size(); }
   std::uint64_t key(std::uint32_t block) const { return keys_[block]; }
-  GridNode* block(std::uint32_t b) { return nodes_.data() + static_cast<std::size_t>(b) * block_size; }
-  const GridNode* block(std::uint32_t b) const {
-    return nodes_.data() + static_cast<std::size_t>(b) * block_size;
+  // Component c (node_value) of block b's 64 nodes, x fastest (local_node()).
+  double* values(std::uint32_t b, int c) {
+    return values_.data() + static_cast<std::size_t>(b) * block_values + c * block_size;
+  }
+  const double* values(std::uint32_t b, int c) const {
+    return values_.data() + static_cast<std::size_t>(b) * block_values + c * block_size;
+  }
+  // Node `local` (local_node()) of block b.
+  GridNode node(std::uint32_t b, int local) { return GridNode(values(b, 0) + local); }
+  ConstGridNode node(std::uint32_t b, int local) const {
+    return ConstGridNode(values(b, 0) + local);
   }
   // Global index of the first node of block b on each axis.
   std::array<int, 3> block_origin(std::uint32_t b) const;
-  // Node (i, j, k) if its block is active, else nullptr.
-  GridNode* node(int i, int j, int k);
-  const GridNode* node(int i, int j, int k) const;
+  // Node (i, j, k) if its block is active.
+  std::optional<GridNode> node(int i, int j, int k);
+  std::optional<ConstGridNode> node(int i, int j, int k) const;
 
-  std::span<GridNode> nodes() { return nodes_; }
   std::size_t bytes() const;
 
  private:
   void grow_table();
   GridGeometry geometry_;
   std::vector<std::uint64_t> keys_;      // block index -> key
-  std::vector<GridNode> nodes_;          // block-major, 64 nodes per block, x fastest
+  std::vector<double> values_;           // block-major, block_values per block
   // Open-addressing hash table key -> block index (linear probing, power-of-two capacity).
   std::vector<std::uint64_t> table_keys_;
   std::vector<std::uint32_t> table_values_;

@@ -1,13 +1,18 @@
 #include "mpm/particle_bins.hpp"
 
+#include <omp.h>
+
 #include <cmath>
+#include <unordered_map>
 
 namespace hvi::mpm {
 
 std::size_t ParticleBins::bytes() const {
-  std::size_t b = key.capacity() * sizeof(std::uint64_t) + order.capacity() * sizeof(std::uint32_t) +
-                  offset.capacity() * sizeof(std::uint32_t) +
-                  neighbours.capacity() * sizeof(neighbours[0]);
+  std::size_t b =
+      key.capacity() * sizeof(std::uint64_t) + order.capacity() * sizeof(std::uint32_t) +
+      offset.capacity() * sizeof(std::uint32_t) + owner.capacity() * sizeof(std::uint32_t) +
+      neighbours.capacity() * sizeof(neighbours[0]) +
+      (group_owner.capacity() + group_offset.capacity()) * sizeof(std::uint32_t);
   for (const auto& c : colour) b += c.capacity() * sizeof(std::uint32_t);
   return b;
 }
@@ -31,6 +36,124 @@ void owner_keys(const Particles& particles, const GridGeometry& g, const std::ve
   }
 }
 
+// Particles [begin, end) of thread t of T, in thread order.
+struct Chunk {
+  std::size_t begin, end;
+  Chunk(std::size_t n, int t, int threads)
+      : begin(n * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads)),
+        end(n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads)) {}
+};
+
+constexpr std::uint32_t unbinned = SparseGrid::none;
+
+// Each binned particle's owner block, numbered in order of first appearance in the particle
+// arrays: every thread lists where runs of one key start in its chunk, in parallel; the runs are
+// numbered in order, serially (particles are stored mostly in block order, so there are few); the
+// owners are then filled in, in parallel. The same numbering as one serial pass.
+void number_owner_blocks(const ParticleBins& bins, SparseGrid& grid, const std::uint8_t* field,
+                         std::uint8_t which, std::vector<std::uint32_t>& owner) {
+  const std::size_t n = bins.key.size();
+  const int threads = omp_get_max_threads();
+  std::vector<std::vector<std::size_t>> starts(static_cast<std::size_t>(threads));
+  std::vector<std::vector<std::uint32_t>> blocks(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const Chunk c(n, t, threads);
+    auto& s = starts[static_cast<std::size_t>(t)];
+    std::uint64_t last = ~std::uint64_t{0};
+    for (std::size_t p = c.begin; p < c.end; ++p) {
+      if (field && field[p] != which) continue;
+      if (bins.key[p] != last) s.push_back(p);
+      last = bins.key[p];
+    }
+  }
+  for (int t = 0; t < threads; ++t)
+    for (const std::size_t p : starts[static_cast<std::size_t>(t)])
+      blocks[static_cast<std::size_t>(t)].push_back(grid.activate(bins.key[p]));
+  owner.resize(n);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const Chunk c(n, t, threads);
+    const auto& s = starts[static_cast<std::size_t>(t)];
+    const auto& b = blocks[static_cast<std::size_t>(t)];
+    std::size_t run = 0;
+    for (std::size_t p = c.begin; p < c.end; ++p) {
+      if (field && field[p] != which) {
+        owner[p] = unbinned;
+        continue;
+      }
+      while (run + 1 < s.size() && s[run + 1] <= p) ++run;
+      owner[p] = b[run];
+    }
+  }
+}
+
+// Counting sort by owner block, stable in particle order: per-thread counts, their prefix sums
+// per block in thread order, then each thread places its chunk.
+void sort_by_owner(ParticleBins& bins, std::uint32_t owners) {
+  const std::size_t n = bins.owner.size();
+  const int threads = omp_get_max_threads();
+  std::vector<std::vector<std::uint32_t>> next(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const Chunk c(n, t, threads);
+    auto& count = next[static_cast<std::size_t>(t)];
+    count.assign(owners, 0);
+    for (std::size_t p = c.begin; p < c.end; ++p)
+      if (bins.owner[p] != unbinned) ++count[bins.owner[p]];
+  }
+  bins.offset.assign(owners + 1, 0);
+  for (std::uint32_t b = 0; b < owners; ++b) {
+    std::uint32_t at = bins.offset[b];
+    for (auto& count : next) {  // count -> this thread's first slot in block b
+      const std::uint32_t k = count[b];
+      count[b] = at;
+      at += k;
+    }
+    bins.offset[b + 1] = at;
+  }
+  bins.order.resize(bins.offset[owners]);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const Chunk c(n, t, threads);
+    auto& slot = next[static_cast<std::size_t>(t)];
+    for (std::size_t p = c.begin; p < c.end; ++p)
+      if (bins.owner[p] != unbinned)
+        bins.order[slot[bins.owner[p]]++] = static_cast<std::uint32_t>(p);
+  }
+}
+
+// Owner blocks by group of 2 x 2 x 2 (halved coordinates), groups numbered in order of their first
+// owner block, owners in order; groups coloured by the parity of their halved coordinates.
+void group_owner_blocks(ParticleBins& bins, const SparseGrid& grid, std::uint32_t owners) {
+  std::unordered_map<std::uint64_t, std::uint32_t> group_of;
+  std::vector<std::uint32_t> group(owners), count;
+  for (auto& c : bins.colour) c.clear();
+  for (std::uint32_t b = 0; b < owners; ++b) {
+    const auto c = SparseGrid::block_coords(grid.key(b));
+    const auto [it, added] =
+        group_of.try_emplace(SparseGrid::block_key(c[0] >> 1, c[1] >> 1, c[2] >> 1),
+                             static_cast<std::uint32_t>(count.size()));
+    if (added) {
+      count.push_back(0);
+      bins.colour[((c[0] >> 1) & 1) | (((c[1] >> 1) & 1) << 1) | (((c[2] >> 1) & 1) << 2)]
+          .push_back(it->second);
+    }
+    group[b] = it->second;
+    ++count[it->second];
+  }
+  bins.group_offset.assign(count.size() + 1, 0);
+  for (std::size_t g = 0; g < count.size(); ++g)
+    bins.group_offset[g + 1] = bins.group_offset[g] + count[g];
+  bins.group_owner.resize(owners);
+  std::vector<std::uint32_t> next(bins.group_offset.begin(), bins.group_offset.end() - 1);
+  for (std::uint32_t b = 0; b < owners; ++b) bins.group_owner[next[group[b]]++] = b;
+}
+
 }  // namespace
 
 void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid& grid,
@@ -43,48 +166,20 @@ void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid
   else
     owner_keys<GimpShape>(particles, grid.geometry(), stencil.half_width, bins.key);  // uGIMP, cpGIMP
 
-  // Owner blocks in order of first appearance. Particles are stored mostly in block order, so
-  // consecutive particles usually share a key and skip the hash lookup.
   grid.clear();
-  constexpr std::uint32_t unbinned = SparseGrid::none;
-  std::vector<std::uint32_t> owner(n, unbinned);
-  std::vector<std::uint32_t> count;
-  std::uint64_t last_key = ~std::uint64_t{0};
-  std::uint32_t last_block = 0;
-  std::size_t binned = 0;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (field && field[p] != which) continue;
-    ++binned;
-    if (bins.key[p] != last_key) {
-      last_key = bins.key[p];
-      last_block = grid.activate(last_key);
-      if (last_block == count.size()) count.push_back(0);
-    }
-    owner[p] = last_block;
-    ++count[last_block];
-  }
-  const auto owners = static_cast<std::uint32_t>(count.size());
+  number_owner_blocks(bins, grid, field, which, bins.owner);
+  const auto owners = static_cast<std::uint32_t>(grid.block_count());
+  sort_by_owner(bins, owners);
 
-  // Counting sort, stable in particle order.
-  bins.offset.assign(owners + 1, 0);
-  for (std::uint32_t b = 0; b < owners; ++b) bins.offset[b + 1] = bins.offset[b] + count[b];
-  bins.order.resize(binned);
-  {
-    std::vector<std::uint32_t> next(bins.offset.begin(), bins.offset.end() - 1);
-    for (std::size_t p = 0; p < n; ++p)
-      if (owner[p] != unbinned) bins.order[next[owner[p]]++] = static_cast<std::uint32_t>(p);
-  }
-
-  // Blocks the stencils reach, and colours.
+  // Blocks the stencils reach, and groups.
   bins.neighbours.resize(owners);
-  for (auto& c : bins.colour) c.clear();
   for (std::uint32_t b = 0; b < owners; ++b) {
     const auto c = SparseGrid::block_coords(grid.key(b));
     for (int o = 0; o < 8; ++o)
-      bins.neighbours[b][o] =
-          grid.activate(SparseGrid::block_key(c[0] + (o & 1), c[1] + ((o >> 1) & 1), c[2] + (o >> 2)));
-    bins.colour[(c[0] & 1) | ((c[1] & 1) << 1) | ((c[2] & 1) << 2)].push_back(b);
+      bins.neighbours[b][o] = grid.activate(
+          SparseGrid::block_key(c[0] + (o & 1), c[1] + ((o >> 1) & 1), c[2] + (o >> 2)));
   }
+  group_owner_blocks(bins, grid, owners);
   for (const auto k : extra_keys) grid.activate(k);
   grid.allocate_nodes();
 }

@@ -1,10 +1,14 @@
 #pragma once
 // Particles binned by the grid block that owns their stencil's lowest node. A particle's stencil
 // (2 nodes per axis for linear, 3 for GIMP) starts in its owner block and reaches at most one block
-// further along each axis, so owner blocks whose coordinates have the same parity on every axis
-// (one of 8 "colours") never write to the same node. Scattering colour by colour, blocks of one
-// colour in parallel and particles of a block in bin order, needs no locks or atomics and adds
-// every node's contributions in the same order for any thread count: bitwise-reproducible results.
+// further along each axis. Owner blocks are grouped in 2 x 2 x 2 groups (the blocks whose
+// coordinates halved are the same), whose points reach the 3 x 3 x 3 blocks from the group's
+// first, and groups whose halved coordinates have the same parity on every axis (one of 8
+// "colours") never write to the same node. Scattering colour by colour, groups of one colour in
+// parallel, a group's owner blocks and a block's particles in order, needs no locks or atomics and
+// adds every node's contributions in the same order for any thread count: bitwise-reproducible
+// results. A group's blocks share most of the nodes they reach, which one thread then finds in
+// its cache.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -17,11 +21,15 @@ namespace hvi::mpm {
 
 struct ParticleBins {
   std::vector<std::uint64_t> key;    // per particle: key of its owner block
+  std::vector<std::uint32_t>
+      owner;  // per particle: its owner block, or SparseGrid::none if not binned
   std::vector<std::uint32_t> order;  // particle indices grouped by owner block, stable
   std::vector<std::uint32_t> offset; // owner block b holds order[offset[b], offset[b+1])
   // Owner block b's blocks at b + (dx, dy, dz), dx, dy, dz in {0, 1}, index dx | dy<<1 | dz<<2.
   std::vector<std::array<std::uint32_t, 8>> neighbours;
-  std::array<std::vector<std::uint32_t>, 8> colour;  // owner blocks by parity of coordinates
+  // Group g holds the owner blocks group_owner[group_offset[g], group_offset[g+1]), in order.
+  std::vector<std::uint32_t> group_owner, group_offset;
+  std::array<std::vector<std::uint32_t>, 8> colour;  // groups by parity of their halved coordinates
   std::size_t owner_count() const { return neighbours.size(); }
   std::size_t bytes() const;
 };

@@ -1,7 +1,9 @@
 #include "mpm/particles.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
+#include <utility>
 
 namespace hvi::mpm {
 
@@ -97,35 +99,77 @@ void permute(std::vector<T>& v, int nc, std::span<const std::uint32_t> order) {
 
 void Particles::reorder(std::span<const std::uint32_t> order) {
   if (order.size() != size()) throw std::logic_error("Particles::reorder: order has the wrong size");
-  for (auto& f : real_fields_)
-    if (!f.scratch) permute(*f.data, components(f.kind), order);
-  for (auto& f : int_fields_) permute(*f.data, 1, order);
+  // Field by field in parallel, as erase().
+  const auto reals = static_cast<std::int64_t>(real_fields_.size());
+  const auto fields = reals + static_cast<std::int64_t>(int_fields_.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t i = 0; i < fields; ++i) {
+    if (i < reals) {
+      if (!real_fields_[i].scratch)
+        permute(*real_fields_[i].data, components(real_fields_[i].kind), order);
+    } else {
+      permute(*int_fields_[i - reals].data, 1, order);
+    }
+  }
 }
 
 namespace {
-template <class T>
-void compact(std::vector<T>& v, int nc, std::span<const std::uint8_t> flag) {
-  std::size_t out = 0;
-  for (std::size_t p = 0; p < flag.size(); ++p) {
-    if (flag[p]) continue;
-    if (out != p)
-      for (int c = 0; c < nc; ++c) v[out * nc + c] = v[p * nc + c];
-    ++out;
+
+// Moves (from, to) that close the gaps of removed particles group by group. Group g holds
+// [b, e) and will hold [B, B + n'), B <= b: its free slots are [B, b) (left by the groups before,
+// whose particles there have moved into their own ranges) and its removed particles inside the
+// new range; its survivors beyond the new range fill them, in order.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> gap_moves(
+    std::span<const std::uint32_t> removed, std::span<const std::size_t> group_sizes,
+    std::size_t& new_size) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> moves;
+  std::size_t b = 0, B = 0, r = 0;  // old and new start of the group; next removed index
+  for (const std::size_t n : group_sizes) {
+    const std::size_t e = b + n, first_removed = r;
+    while (r < removed.size() && removed[r] < e) ++r;
+    const std::size_t kept = n - (r - first_removed), E = B + kept;
+    std::vector<std::uint32_t> free;  // slots of [B, E) to fill, ascending
+    for (std::size_t t = B; t < std::min(b, E); ++t) free.push_back(static_cast<std::uint32_t>(t));
+    for (std::size_t k = first_removed; k < r && removed[k] < E; ++k) free.push_back(removed[k]);
+    std::size_t next_removed = first_removed, f = 0;
+    for (std::size_t from = std::max(b, E); from < e && f < free.size(); ++from) {
+      while (next_removed < r && removed[next_removed] < from) ++next_removed;
+      if (next_removed < r && removed[next_removed] == from) continue;  // removed: no source
+      moves.emplace_back(static_cast<std::uint32_t>(from), free[f++]);
+    }
+    b = e;
+    B = E;
   }
-  v.resize(out * nc);
+  new_size = B;
+  return moves;
 }
+
+template <class T>
+void apply_moves(std::vector<T>& v, int nc,
+                 const std::vector<std::pair<std::uint32_t, std::uint32_t>>& moves,
+                 std::size_t new_size) {
+  for (const auto& [from, to] : moves)
+    for (int c = 0; c < nc; ++c)
+      v[to * static_cast<std::size_t>(nc) + c] = v[from * static_cast<std::size_t>(nc) + c];
+  v.resize(new_size * nc);
+}
+
 }  // namespace
 
-void Particles::erase_flagged(std::span<const std::uint8_t> flag) {
+void Particles::erase(std::span<const std::uint32_t> removed,
+                      std::span<const std::size_t> group_sizes) {
+  if (removed.empty()) return;
+  std::size_t new_size = 0;
+  const auto moves = gap_moves(removed, group_sizes, new_size);
   // Field by field in parallel: each is its own array, moved the same way whatever the thread.
   const auto reals = static_cast<std::int64_t>(real_fields_.size());
   const auto fields = reals + static_cast<std::int64_t>(int_fields_.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t i = 0; i < fields; ++i) {
     if (i < reals)
-      compact(*real_fields_[i].data, components(real_fields_[i].kind), flag);
+      apply_moves(*real_fields_[i].data, components(real_fields_[i].kind), moves, new_size);
     else
-      compact(*int_fields_[i - reals].data, 1, flag);
+      apply_moves(*int_fields_[i - reals].data, 1, moves, new_size);
   }
 }
 

@@ -77,8 +77,11 @@ class Particles {
 
   // Reorders every non-scratch field: new particle k is old particle order[k].
   void reorder(std::span<const std::uint32_t> order);
-  // Removes the particles whose flag is nonzero, keeping the order of the others.
-  void erase_flagged(std::span<const std::uint8_t> flag);
+  // Removes the particles at `removed` (ascending indices). The particles are taken as groups of
+  // consecutive runs, `group_sizes` long (a solver's materials), which stay contiguous and in their
+  // order: each group's last particles move into its gaps, so it costs a few moves per removed
+  // particle instead of a pass over every field, and the order inside a group changes.
+  void erase(std::span<const std::uint32_t> removed, std::span<const std::size_t> group_sizes);
 
   // Bytes held by all per-particle arrays (capacity), for the memory report.
   std::size_t bytes() const;

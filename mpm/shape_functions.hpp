@@ -7,6 +7,11 @@
 // weights outside the support come out as exact zeros.
 #include <cmath>
 
+#include "mpm/simd.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // see simd.hpp
+
 namespace hvi::mpm {
 
 enum class ShapeFunction {
@@ -39,26 +44,71 @@ struct LinearShape {
 struct GimpShape {
   static constexpr int width = 3;
   static int lowest(double s, double a) { return static_cast<int>(std::floor(s - a)); }
+  // The nodes i0, i0 + 1, i0 + 2 for any i0, in lanes 0-2 of four (lane 3 is i0 + 3). Which piece
+  // a node falls on depends on where the particle sits in its cell, random from one particle to
+  // the next, so each node forms every piece's value and selects its own, without a branch; the
+  // quotients by 2a and 4a are products with 1/a, one division a point and axis.
+  static void weights4(double s, int i0, double a, double* N, double* dN) {
+    using v = simd::d4;
+    const double r = 1.0 / a, half_r = 0.5 * r, quarter_r = 0.25 * r;
+    const v d = s - (static_cast<double>(i0) + v{0.0, 1.0, 2.0, 3.0});
+    const v ad = d < 0.0 ? -d : d;
+    const v sgn = d < 0.0 ? v{} - 1.0 : v{} + 1.0;
+    const v u = (1.0 + a) - ad;
+    const auto inner = ad < a, middle = ad < 1.0 - a, outer = ad < 1.0 + a;
+    const v zero{};
+    const v n = inner    ? 1.0 - (d * d + a * a) * half_r
+                : middle ? 1.0 - ad
+                : outer  ? u * u * quarter_r
+                         : zero;
+    const v dn = inner ? -d * r : middle ? -sgn : outer ? -sgn * u * half_r : zero;
+    simd::store<4>(N, n);
+    simd::store<4>(dN, dn);
+  }
   static void weights(double s, int i0, double a, double* N, double* dN) {
-    // Which piece a node falls on depends on where the particle sits in its cell, random from
-    // one particle to the next, so a branch on it cannot be predicted. Each node therefore forms
-    // its two quotients from selected operands and then selects its piece: every selected value
-    // is the expression of the piecewise form above, with the same operands in the same order,
-    // so the weights are the same to the last bit (tests/mpm/test_shape_functions.cpp).
-    const double two_a = 2.0 * a, four_a = 4.0 * a;
+    double n[4], dn[4];
+    weights4(s, i0, a, n, dn);
     for (int k = 0; k < width; ++k) {
-      const double d = s - (i0 + k);
-      const double ad = std::fabs(d);
-      const double sgn = d < 0.0 ? -1.0 : 1.0;
-      const double u = 1.0 + a - ad;
-      const bool inner = ad < a, middle = ad < 1.0 - a, outer = ad < 1.0 + a;
-      const double n_quotient = (inner ? d * d + a * a : u * u) / (inner ? two_a : four_a);
-      const double dn_quotient = (inner ? -d : -sgn * u) / (inner ? a : two_a);
-      N[k] = inner ? 1.0 - n_quotient : middle ? 1.0 - ad : outer ? n_quotient : 0.0;
-      dN[k] = inner ? dn_quotient : middle ? -sgn : outer ? dn_quotient : 0.0;
+      N[k] = n[k];
+      dN[k] = dn[k];
+    }
+  }
+
+  // The stencil from the lowest node, i0 = lowest(s, a), on the three axes at once (lanes x, y,
+  // z): N[axis][k], dN[axis][k] of node i0 + k, k = 0..2, and 0 for k = 3. There the pieces
+  // follow from one test per axis: the middle node is inside the particle's domain (|d_1| < a)
+  // when the particle reaches three nodes, and then the outer nodes are on the tails,
+  //   N_0 = u_0^2 / (4a), N_1 = 1 - (d_1^2 + a^2) / (2a), N_2 = u_2^2 / (4a),  u_k = 1 + a - |d_k|;
+  // else it reaches two, on the hat's flanks: N_0 = 1 - d_0, N_1 = 1 - |d_1|, N_2 = 0. Each value
+  // is the expression weights() forms for its piece, so the two agree to the bit but within
+  // round-off of a joint, where the pieces agree to round-off (tests/mpm/test_shape_functions.cpp).
+  static void weights_from_lowest(const double* s, const double* a, const int* i0, double (*N)[4],
+                                  double (*dN)[4]) {
+    using v = simd::d4;
+    const v sv = {s[0], s[1], s[2], 0.5},
+            av = {a[0], a[1], a[2], 0.25};  // lane 3: a harmless filler
+    const v base = {static_cast<double>(i0[0]), static_cast<double>(i0[1]),
+                    static_cast<double>(i0[2]), 0.0};
+    const v r = 1.0 / av, half_r = 0.5 * r, quarter_r = 0.25 * r;
+    const v d0 = sv - base, d1 = sv - (base + 1.0), d2 = sv - (base + 2.0);
+    const auto three = d1 < av && -d1 < av;              // |d_1| < a
+    const v u0 = (1.0 + av) - d0, u2 = (1.0 + av) + d2;  // 1 + a - |d|: d_0 > 0, d_2 < 0
+    const v one = v{} + 1.0, zero{};
+    const v n[3] = {three ? u0 * u0 * quarter_r : 1.0 - d0,
+                    three ? 1.0 - (d1 * d1 + av * av) * half_r : 1.0 + d1,
+                    three ? u2 * u2 * quarter_r : zero};
+    const v dn[3] = {three ? -u0 * half_r : -one, three ? -d1 * r : one,
+                     three ? u2 * half_r : zero};
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int k = 0; k < 3; ++k) {
+        N[axis][k] = n[k][axis];
+        dN[axis][k] = dn[k][axis];
+      }
+      N[axis][3] = dN[axis][3] = 0.0;
     }
   }
 };
 
-
 }  // namespace hvi::mpm
+
+#pragma GCC diagnostic pop

@@ -5,20 +5,22 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include "mpm/grid_update.hpp"
 
 namespace hvi::mpm {
 
 Solver::Solver(GridGeometry grid, SolverSettings settings,
-               std::vector<std::unique_ptr<Material>> materials, std::vector<std::string> body_names,
-               std::vector<GridBoundary> boundaries)
+               std::vector<std::unique_ptr<Material>> materials,
+               std::vector<std::string> body_names, std::vector<GridBoundary> boundaries)
     : geometry_(grid),
       settings_(settings),
       materials_(std::move(materials)),
       body_names_(std::move(body_names)),
       boundaries_(std::move(boundaries)),
-      grid_(grid) {
+      grid_(grid),
+      mirrors_(mirror_planes(grid, boundaries_)) {
   const int bodies = static_cast<int>(body_names_.size());
   if (settings_.contact) {
     if (settings_.contact->impactor.size() != body_names_.size())
@@ -123,7 +125,8 @@ void Solver::compute_material_ranges() {
 }
 
 // Reorders particle arrays by material (so each material is one contiguous group) and, inside a
-// material, by owner block (so a block's particles are close in memory). Uses the current bins.
+// material, by owner block in the order the transfers visit them (so a block's particles, and a
+// group's blocks', are close in memory). Uses the current bins.
 void Solver::sort_by_material_and_block() {
   const std::size_t n = particles_.size();
   std::vector<std::size_t> start(materials_.size() + 1, 0);
@@ -131,7 +134,11 @@ void Solver::sort_by_material_and_block() {
   for (std::size_t m = 0; m < materials_.size(); ++m) start[m + 1] += start[m];
   std::vector<std::uint32_t> order(n);
   for_each_field([&](const ParticleBins& bins, const SparseGrid&, const VolumetricAverage*) {
-    for (const auto p : bins.order) order[start[particles_.material[p]]++] = p;
+    for (const std::uint32_t b : bins.group_owner)  // the order the transfers visit the blocks in
+      for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
+        const std::uint32_t p = bins.order[k];
+        order[start[particles_.material[p]]++] = p;
+      }
   });
   particles_.reorder(order);
   compute_material_ranges();
@@ -184,10 +191,8 @@ void Solver::step(double max_dt) {
   // After every transfer of the step: the bins (each point's owner block, the colours) hold for
   // the domains the step began with, and a domain grown mid-step can reach a node below its owner
   // block's, which a later scatter would write outside its colour's blocks (USF's force scatter
-  // did, until this ran here). The stress update reads L, not the domains.
-  stretch_particle_domains();
-  update_positions();
-  reflect_at_symmetry_planes();
+  // did, until the stretch ran here). The stress update reads L, not the domains.
+  move_particles();
   state_.time += dt_;
   state_.step += 1;
   remove_escaped_particles();
@@ -287,27 +292,6 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
   });
 }
 
-// cpGIMP: the axis-aligned domain follows the stretch along each axis, a_d <- a_d (1 + dt L_dd),
-// up to h / 2 (the three-node stencil's limit) and, in compression, down to h / 10 but never
-// below where it started. Letting domains shrink further brings back linear-like cell-crossing
-// noise: a 10 km/s impact then gained 59% energy (3.9% with the floor), and the floor also puts
-// the Taylor-bar foot at 11.34 mm instead of 11.43 (benchmark 11.18-11.22).
-void Solver::stretch_particle_domains() {
-  if (settings_.shape != ShapeFunction::cpgimp) return;
-  auto t = timer_.scope("stretch particle domains");
-  stencils_.invalidate();
-  double* a = half_width_->data();
-  const double* L = particles_.velocity_gradient.data();
-  const double floor = 0.1 * geometry_.cell_size, ceiling = 0.5 * geometry_.cell_size, dt = dt_;
-  const auto n = static_cast<std::int64_t>(particles_.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t p = 0; p < n; ++p)
-    for (int d = 0; d < 3; ++d) {
-      double& ad = a[3 * p + d];
-      ad = std::min(std::max(ad * (1.0 + dt * L[9 * p + 4 * d]), std::min(floor, ad)), ceiling);
-    }
-}
-
 void Solver::update_stress() {
   const StressContext context{dt_, state_.time, state_.step, &timer_};
   double signal = 0.0;
@@ -320,51 +304,57 @@ void Solver::update_stress() {
   max_signal_speed_ = signal;
 }
 
-void Solver::update_positions() {
-  auto t = timer_.scope("update positions");
-  const auto n = static_cast<std::int64_t>(particles_.size());
+// cpGIMP: the axis-aligned domain follows the stretch along each axis, a_d <- a_d (1 + dt L_dd),
+// up to h / 2 (the three-node stencil's limit) and, in compression, down to h / 10 but never
+// below where it started. Letting domains shrink further brings back linear-like cell-crossing
+// noise: a 10 km/s impact then gained 59% energy (3.9% with the floor), and the floor also puts
+// the Taylor-bar foot at 11.34 mm instead of 11.43 (benchmark 11.18-11.22).
+//
+// Per point, in one pass: the stretch of its domain (cpGIMP), x <- x + dt v_grid, the reflection
+// at each symmetry plane it crossed, and whether it has left the grid (into escaped_).
+void Solver::move_particles() {
+  auto t = timer_.scope("move particles");
+  const bool stretch = settings_.shape == ShapeFunction::cpgimp;
+  if (stretch) stencils_.invalidate();
+  double* a = stretch ? half_width_->data() : nullptr;
+  const double* L = particles_.velocity_gradient.data();
   double* x = particles_.position.data();
-  const double* vg = particles_.grid_velocity.data();
-  const double dt = dt_;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < 3 * n; ++i) x[i] += dt * vg[i];
+  double* v = particles_.velocity.data();
+  double* vg = particles_.grid_velocity.data();
+  const double floor = 0.1 * geometry_.cell_size, ceiling = 0.5 * geometry_.cell_size, dt = dt_;
+  const auto n = static_cast<std::int64_t>(particles_.size());
+  std::vector<std::vector<std::uint32_t>> escaped(static_cast<std::size_t>(omp_get_max_threads()));
+#pragma omp parallel
+  {
+    // Static ranges in thread order, so the lists join in ascending order.
+    const std::int64_t threads = omp_get_num_threads(), id = omp_get_thread_num();
+    auto& out = escaped[static_cast<std::size_t>(id)];
+    for (std::int64_t p = n * id / threads; p < n * (id + 1) / threads; ++p) {
+      if (stretch)
+        for (int d = 0; d < 3; ++d) {
+          double& ad = a[3 * p + d];
+          ad = std::min(std::max(ad * (1.0 + dt * L[9 * p + 4 * d]), std::min(floor, ad)), ceiling);
+        }
+      for (int d = 0; d < 3; ++d) x[3 * p + d] += dt * vg[3 * p + d];
+      for (const auto& m : mirrors_) reflect(m, &x[3 * p], &v[3 * p], &vg[3 * p]);
+      if (!geometry_.contains(&x[3 * p])) out.push_back(static_cast<std::uint32_t>(p));
+    }
+  }
+  escaped_.clear();
+  for (const auto& e : escaped) escaped_.insert(escaped_.end(), e.begin(), e.end());
 }
 
-void Solver::reflect_at_symmetry_planes() {
-  if (std::none_of(boundaries_.begin(), boundaries_.end(),
-                   [](const GridBoundary& c) { return c.type == BoundaryType::symmetry; }))
-    return;
-  auto t = timer_.scope("reflect at symmetry planes");
-  mpm::reflect_at_symmetry_planes(particles_, geometry_, boundaries_);
-}
-
+// The points that left the grid, booked as removed, then taken out: the last points of each
+// material move into the gaps (Particles::erase).
 void Solver::remove_escaped_particles() {
+  if (escaped_.empty()) return;
   auto t = timer_.scope("remove escaped");
-  const std::size_t n = particles_.size();
-  std::vector<std::uint8_t> out(n, 0);
-  std::int64_t first_nonfinite = -1;
-  std::size_t escaped = 0;
-#pragma omp parallel for schedule(static) reduction(+ : escaped)
-  for (std::int64_t p = 0; p < static_cast<std::int64_t>(n); ++p) {
+  for (const std::uint32_t p : escaped_) {
     const double* x = &particles_.position[3 * p];
-    if (!geometry_.contains(x)) {
-      out[p] = 1;
-      ++escaped;
-    }
+    if (!std::isfinite(x[0] + x[1] + x[2])) fail(p, "non-finite position");
   }
-  if (escaped == 0) return;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (!out[p]) continue;
-    const double* x = &particles_.position[3 * p];
-    if (!std::isfinite(x[0] + x[1] + x[2])) {
-      first_nonfinite = static_cast<std::int64_t>(p);
-      break;
-    }
-  }
-  if (first_nonfinite >= 0) fail(static_cast<std::size_t>(first_nonfinite), "non-finite position");
   auto& r = state_.removed;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (!out[p]) continue;
+  for (const std::uint32_t p : escaped_) {
     const double m = particles_.mass[p];
     const double* v = &particles_.velocity[3 * p];
     r.particles += 1;
@@ -377,7 +367,10 @@ void Solver::remove_escaped_particles() {
                                 particles_.position[3 * p + 2]},
                                {v[0], v[1], v[2]}, m, state_.time, state_.step});
   }
-  particles_.erase_flagged(out);
+  std::vector<std::size_t> sizes;
+  for (const auto& range : ranges_) sizes.push_back(range.size());
+  particles_.erase(escaped_, sizes);
+  escaped_.clear();
   compute_material_ranges();
 }
 

@@ -166,10 +166,8 @@ class Solver {
   void update_remapped_grid();
   void grid_to_particles(bool remap);
   void compute_velocity_gradient(NodalVelocity which);
-  void stretch_particle_domains();
   void update_stress();
-  void update_positions();
-  void reflect_at_symmetry_planes();
+  void move_particles();
   void remove_escaped_particles();
   void choose_time_step();
 
@@ -200,13 +198,15 @@ class Solver {
   std::unique_ptr<BodyContact> contact_;
   std::unique_ptr<VolumetricAverage> volumetric1_;
   // GIMP on one velocity field: the points' stencils from the binning to the domains' stretch
-  // (transfers.hpp). Invalidated by bin_particles() and stretch_particle_domains().
+  // (transfers.hpp). Invalidated by bin_particles() and move_particles() (cpGIMP's stretch).
   mutable StencilCache stencils_;
 
   SolverState state_;
   double dt_ = 0.0;  // of the step in progress
   double max_signal_speed_ = 0.0;
   std::vector<RemovalEvent> removal_events_;
+  std::vector<std::uint32_t> escaped_;  // points move_particles() found outside the grid, ascending
+  std::vector<MirrorPlane> mirrors_;    // the symmetry planes points are reflected at
   PhaseTimer timer_;
 };
 

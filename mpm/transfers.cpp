@@ -4,138 +4,449 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "mpm/patch.hpp"
+#include "mpm/transfer_kernels.hpp"
 #include "mpm/types.hpp"
+
+// Each pass runs owner block by owner block (particle_bins.hpp): it evaluates the stencils of the
+// block's points (or reads them from a StencilCache), copies the nodal values it reads into the
+// block's patch (patch.hpp), runs the per-point kernels (transfer_kernels.hpp) and adds what they
+// scattered to the nodes. A pass that scatters runs colour by colour, blocks of one colour in
+// parallel, so each node receives its blocks' patches in the same order for any thread count.
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // four-lane values between inlined kernels (simd.hpp)
 
 namespace hvi::mpm {
 namespace {
 
-// The stencil of one particle, resolved to node addresses inside its owner block's neighbourhood.
+// ---------------------------------------------------------------------------------------------
+// Stencils
+
+// Particle p's stencil from its position and (GIMP) half-widths a in cells (nullptr: linear).
 template <class Shape>
-struct NodeStencil {
-  static constexpr int W = Shape::width;
-  double N[3][W], dN[3][W];
-  int lowest[3];          // lowest node per axis, relative to the owner block's first node
-  int node_offset[3][W];  // local node index contribution per axis
-  int block_bit[3][W];    // neighbour bit per axis
-  int first[3], last[3];  // the nodes with nonzero weight per axis (GIMP: 2 or 3 of the 3)
+void evaluate(PatchStencil<Shape::width>& st, const double* x, const GridGeometry& g, double inv_h,
+              const double* a, const std::array<int, 3>& origin) {
+  constexpr int W = Shape::width;
+  double s[3];
+  int base[3];
+  for (int d = 0; d < 3; ++d) {
+    s[d] = (x[d] - g.origin[d]) * inv_h;
+    base[d] = Shape::lowest(s[d], a ? a[d] : 0.0);
+    st.lowest[d] = base[d] - origin[d];
+  }
+  if constexpr (W == 3) {
+    Shape::weights_from_lowest(s, a, base, st.N, st.dN);
+  } else {
+    for (int d = 0; d < 3; ++d) Shape::weights(s[d], base[d], 0.0, st.N[d], st.dN[d]);
+  }
+  // Rows of zero weight add nothing to any sum, so skipping them leaves results unchanged.
+  st.y0 = st.z0 = 0;
+  st.y1 = st.z1 = W - 1;
+  if constexpr (W > 2) {
+    while (st.N[1][st.y0] == 0.0 && st.dN[1][st.y0] == 0.0) ++st.y0;
+    while (st.N[1][st.y1] == 0.0 && st.dN[1][st.y1] == 0.0) --st.y1;
+    while (st.N[2][st.z0] == 0.0 && st.dN[2][st.z0] == 0.0) ++st.z0;
+    while (st.N[2][st.z1] == 0.0 && st.dN[2][st.z1] == 0.0) --st.z1;
+  }
+}
 
-  // a: GIMP half-width per axis in cells (nullptr for linear shape functions).
-  void evaluate(const double* x, const GridGeometry& g, double inv_h, const double* a,
-                const std::array<int, 3>& block_origin) {
-    for (int d = 0; d < 3; ++d) {
-      const double s = (x[d] - g.origin[d]) * inv_h;
-      const double ad = a ? a[d] : 0.0;
-      const int base = Shape::lowest(s, ad);
-      Shape::weights(s, base, ad, N[d], dN[d]);
-      lowest[d] = base - block_origin[d];
-      // Skipping nodes of zero weight adds nothing to any sum, so results are unchanged.
-      first[d] = 0;
-      last[d] = W - 1;
-      if constexpr (W > 2) {
-        while (N[d][first[d]] == 0.0 && dN[d][first[d]] == 0.0) ++first[d];
-        while (N[d][last[d]] == 0.0 && dN[d][last[d]] == 0.0) --last[d];
-      }
+void store(const PatchStencil<3>& st, GimpStencil& c) {
+  for (int d = 0; d < 3; ++d)
+    for (int k = 0; k < 3; ++k) {
+      c.N[d][k] = st.N[d][k];
+      c.dN[d][k] = st.dN[d][k];
     }
-    resolve_nodes();
-  }
+  for (int d = 0; d < 3; ++d) c.lowest[d] = static_cast<std::int8_t>(st.lowest[d]);
+  c.first[0] = static_cast<std::int8_t>(st.y0);
+  c.last[0] = static_cast<std::int8_t>(st.y1);
+  c.first[1] = static_cast<std::int8_t>(st.z0);
+  c.last[1] = static_cast<std::int8_t>(st.z1);
+}
 
-  // Into and out of a StencilCache (the weights, lowest nodes and nonzero ranges).
-  void store(StencilWeights<W>& c) const {
-    for (int d = 0; d < 3; ++d) {
-      for (int k = 0; k < W; ++k) {
-        c.N[d][k] = N[d][k];
-        c.dN[d][k] = dN[d][k];
-      }
-      c.lowest[d] = static_cast<std::int8_t>(lowest[d]);
-      c.first[d] = static_cast<std::int8_t>(first[d]);
-      c.last[d] = static_cast<std::int8_t>(last[d]);
+void load(const GimpStencil& c, PatchStencil<3>& st) {
+  for (int d = 0; d < 3; ++d) {
+    for (int k = 0; k < 3; ++k) {
+      st.N[d][k] = c.N[d][k];
+      st.dN[d][k] = c.dN[d][k];
     }
+    st.N[d][3] = st.dN[d][3] = 0.0;
   }
-  void load(const StencilWeights<W>& c) {
-    for (int d = 0; d < 3; ++d) {
-      for (int k = 0; k < W; ++k) {
-        N[d][k] = c.N[d][k];
-        dN[d][k] = c.dN[d][k];
-      }
-      lowest[d] = c.lowest[d];
-      first[d] = c.first[d];
-      last[d] = c.last[d];
-    }
-    resolve_nodes();
-  }
-
-  void resolve_nodes() {
-    static constexpr int stride[3] = {1, SparseGrid::block_edge, SparseGrid::block_edge * SparseGrid::block_edge};
-    for (int d = 0; d < 3; ++d)
-      for (int k = 0; k < W; ++k) {
-        const int l = lowest[d] + k;  // 0 .. 2*edge-1
-        block_bit[d][k] = (l / SparseGrid::block_edge) << d;
-        node_offset[d][k] = (l % SparseGrid::block_edge) * stride[d];
-      }
-  }
-
-  // f(node, weight, gradient[3]) for every node of the stencil; gradient in 1/m.
-  template <class Node, class F>
-  void for_each(Node* const* blocks, double inv_h, F&& f) const {
-    // Linear stencils always use both nodes: constant bounds let the compiler unroll them.
-    const int z0 = W > 2 ? first[2] : 0, z1 = W > 2 ? last[2] : W - 1;
-    const int y0 = W > 2 ? first[1] : 0, y1 = W > 2 ? last[1] : W - 1;
-    const int x0 = W > 2 ? first[0] : 0, x1 = W > 2 ? last[0] : W - 1;
-    for (int kz = z0; kz <= z1; ++kz)
-      for (int ky = y0; ky <= y1; ++ky) {
-        const double nyz = N[1][ky] * N[2][kz];
-        const double dy = dN[1][ky] * N[2][kz] * inv_h, dz = N[1][ky] * dN[2][kz] * inv_h;
-        const int bit_yz = block_bit[1][ky] | block_bit[2][kz];
-        const int off_yz = node_offset[1][ky] + node_offset[2][kz];
-        for (int kx = x0; kx <= x1; ++kx) {
-          Node* node = blocks[block_bit[0][kx] | bit_yz] + (node_offset[0][kx] + off_yz);
-          const double grad[3] = {dN[0][kx] * nyz * inv_h, N[0][kx] * dy, N[0][kx] * dz};
-          f(*node, N[0][kx] * nyz, grad);
-        }
-      }
-  }
-};
+  for (int d = 0; d < 3; ++d) st.lowest[d] = c.lowest[d];
+  st.y0 = c.first[0];
+  st.y1 = c.last[0];
+  st.z0 = c.first[1];
+  st.z1 = c.last[1];
+}
 
 struct Setup {
-  const GridGeometry& g;
+  const GridGeometry* g;
   double inv_h;
   const double* half_width;  // 3 per particle, m
-  const NodeAverageSums* mean_stress;  // gathered into the force scatter; nullptr for none
   // GIMP with a StencilCache: read the step's stencils from `read`, or evaluate them and, in a
   // pass that visits every binned point, store them in `fill`. Both nullptr: evaluate.
   const GimpStencil* read;
   GimpStencil* fill;
-  // Half-widths of particle p in cells, per axis, in `out`; nullptr for linear shape functions.
-  const double* a(std::size_t p, double* out) const {
-    if (!half_width) return nullptr;
-    for (int d = 0; d < 3; ++d) out[d] = half_width[3 * p + d] * inv_h;
-    return out;
-  }
-  // Particle p's stencil in st.
+
   template <class Shape>
-  void stencil(NodeStencil<Shape>& st, const Particles& P, std::uint32_t p,
+  void stencil(PatchStencil<Shape::width>& st, const Particles& P, std::uint32_t p,
                const std::array<int, 3>& origin) const {
     if constexpr (std::is_same_v<Shape, GimpShape>)
       if (read) {
-        st.load(read[p]);
+        load(read[p], st);
         return;
       }
-    double a_cells[3];
-    st.evaluate(&P.position[3 * p], g, inv_h, a(p, a_cells), origin);
+    double a[3];
+    if (half_width)
+      for (int d = 0; d < 3; ++d) a[d] = half_width[3 * p + d] * inv_h;
+    evaluate<Shape>(st, &P.position[3 * p], *g, inv_h, half_width ? a : nullptr, origin);
     if constexpr (std::is_same_v<Shape, GimpShape>)
-      if (fill) st.store(fill[p]);
+      if (fill) store(st, fill[p]);
   }
 };
 
-// Where a node average keeps its sums for a particle's group at node n: (sum N V a, sum N V) at
-// sums[slot], sums[slot + 1]. Nodes are indexed by their place in the grid's storage.
-struct SumsSlot {
-  const GridNode* base;
-  int groups;
-  std::size_t operator()(const GridNode& n, std::int64_t group) const {
-    return 2 * (static_cast<std::size_t>(&n - base) * groups + static_cast<std::size_t>(group));
+// ---------------------------------------------------------------------------------------------
+// Passes
+
+enum class Pass { scatter, velocity, gradient, average_scatter, average_gather, normals };
+
+// Everything a pass reads and writes; the fields a pass does not use stay at their defaults.
+struct PassArgs {
+  Pass pass;
+  Particles* P;
+  const ParticleBins* bins;
+  SparseGrid* grid;
+  Setup s;
+  Scatter what = Scatter::mass_momentum_force;
+  const NodeAverageSums* average = nullptr;  // scatter: mean stress; gradient: dilatation; averages
+  bool remap = false;
+  double flip = 1.0;
+  NodalVelocity which = NodalVelocity::start;
+  double* out = nullptr;  // average_gather: abar_p; normals: g_I; gradient: tr L_p
+  const std::vector<std::uint8_t>* owners = nullptr;
+};
+
+// Per thread: the stencils of the block in hand and the patch's components.
+struct Scratch {
+  std::vector<PatchStencil<2>> linear;
+  std::vector<PatchStencil<3>> gimp;
+  std::vector<double> values;
+  std::vector<double*> pointers;
+  template <int W>
+  std::vector<PatchStencil<W>>& stencils() {
+    if constexpr (W == 2)
+      return linear;
+    else
+      return gimp;
+  }
+  double* const* components(int count) {
+    values.resize(static_cast<std::size_t>(count) * patch::size);
+    pointers.resize(static_cast<std::size_t>(count));
+    for (int k = 0; k < count; ++k)
+      pointers[k] = values.data() + static_cast<std::size_t>(k) * patch::size;
+    return pointers.data();
   }
 };
+
+// A node average's sums, as the grid's values block by block (structure of arrays): array k
+// (0: value, 1: weight) of group g of block b, 64 nodes.
+inline std::size_t sums_at(std::uint32_t b, int groups, std::int64_t g, int k) {
+  return ((static_cast<std::size_t>(b) * static_cast<std::size_t>(groups) +
+           static_cast<std::size_t>(g)) *
+              2 +
+          static_cast<std::size_t>(k)) *
+         SparseGrid::block_size;
+}
+
+// Four nodes' values at once.
+using d4 = simd::d4;
+inline d4 row(const double* p) {
+  return simd::load<4>(p);
+}
+inline void set_row(double* p, d4 v) {
+  simd::store<4>(p, v);
+}
+inline void add_row(double* p, d4 v) {
+  simd::store<4>(p, simd::load<4>(p) + v);
+}
+
+template <class Shape>
+class BlockPass {
+ public:
+  static constexpr int W = Shape::width;
+
+  BlockPass(const PassArgs& a, std::uint32_t b, Scratch& scratch)
+      : a_(a),
+        P_(*a.P),
+        nb_(a.bins->neighbours[b]),
+        order_(a.bins->order.data() + a.bins->offset[b]),
+        count_(a.bins->offset[b + 1] - a.bins->offset[b]),
+        st_(scratch.stencils<W>()),
+        scratch_(scratch),
+        grid_(*a.grid),
+        inv_h_(a.s.inv_h) {
+    const auto origin = a.grid->block_origin(b);
+    st_.resize(count_);
+    for (std::uint32_t k = 0; k < count_; ++k) {
+      a.s.template stencil<Shape>(st_[k], P_, order_[k], origin);
+      region_.add(st_[k]);
+    }
+    region_.finish();
+  }
+
+  void run() {
+    switch (a_.pass) {
+      case Pass::scatter:
+        if (a_.what == Scatter::mass_momentum) return scatter<true, true, false>();
+        if (a_.what == Scatter::force)
+          return a_.average ? scatter<false, false, true, true>() : scatter<false, false, true>();
+        return a_.average ? scatter<true, true, true, true>() : scatter<true, true, true>();
+      case Pass::velocity:
+        return a_.remap ? velocity<true>() : velocity<false>();
+      case Pass::gradient:
+        switch (a_.which) {
+          case NodalVelocity::start:
+            return a_.average ? gradient<NodalVelocity::start, true>()
+                              : gradient<NodalVelocity::start, false>();
+          case NodalVelocity::end:
+            return a_.average ? gradient<NodalVelocity::end, true>()
+                              : gradient<NodalVelocity::end, false>();
+          case NodalVelocity::remapped:
+            return a_.average ? gradient<NodalVelocity::remapped, true>()
+                              : gradient<NodalVelocity::remapped, false>();
+        }
+        return;
+      case Pass::average_scatter:
+        return average_scatter();
+      case Pass::average_gather:
+        return average_gather();
+      case Pass::normals:
+        return normals();
+    }
+  }
+
+ private:
+  // f(block, local node, patch index) for each row of four nodes of the region.
+  template <class F>
+  void each_row(F&& f) const {
+    for_each_patch_row(nb_, region_, f);
+  }
+
+  // The node average's values abar_I of every group into components c[0 .. groups).
+  void load_averages(double* const* c) const {
+    const NodeAverageSums& na = *a_.average;
+    const double* sums = na.sums->data();
+    const int groups = na.average.groups;
+    each_row([&](std::uint32_t b, int l, int i) {
+      for (int g = 0; g < groups; ++g) set_row(c[g] + i, row(sums + sums_at(b, groups, g, 0) + l));
+    });
+  }
+  // Adds the (value, weight) pairs of every group in c[0 .. 2 groups) to the node average's sums.
+  void add_sums(double* const* c) const {
+    const NodeAverageSums& na = *a_.average;
+    double* sums = na.sums->data();
+    const int groups = na.average.groups;
+    each_row([&](std::uint32_t b, int l, int i) {
+      for (int g = 0; g < groups; ++g)
+        for (int k = 0; k < 2; ++k)
+          add_row(sums + sums_at(b, groups, g, k) + l, row(c[2 * g + k] + i));
+    });
+  }
+
+  // m_I, p_I and f_I; with Mean, each counted point's stress carries V_p (mbar_p - m_p) 1 of the
+  // mean stress's node average.
+  template <bool Mass, bool Momentum, bool Force, bool Mean = false>
+  void scatter() {
+    namespace sp = kernels::scatter_patch;
+    const int groups = Mean ? a_.average->average.groups : 0;
+    double* const* c = scratch_.components(sp::count + groups);
+    zero_patch(c, sp::count, region_);
+    if constexpr (Mean) load_averages(c + sp::count);
+    for (std::uint32_t k = 0; k < count_; ++k) {
+      const std::uint32_t p = order_[k];
+      double vs[6] = {};  // V_p sigma_p
+      if constexpr (Force) {
+        const double V = P_.volume[p];
+        for (int i = 0; i < 6; ++i) vs[i] = V * P_.stress[6 * p + i];
+        if constexpr (Mean) {
+          const NodeAverage& av = a_.average->average;
+          const double shift =
+              av.counts(p)
+                  ? kernels::gather_scalar(st_[k], inv_h_, c[sp::count + av.group[p]]) - av.value[p]
+                  : 0.0;
+          for (const int i : {sym::xx, sym::yy, sym::zz}) vs[i] += V * shift;
+        }
+      }
+      kernels::scatter_point<W, Mass, Momentum, Force>(st_[k], inv_h_, P_.mass[p],
+                                                       &P_.velocity[3 * p], vs, c);
+    }
+    each_row([&](std::uint32_t b, int l, int i) {
+      if constexpr (Mass) add_row(grid_.values(b, node_value::mass) + l, row(c[sp::mass] + i));
+      for (int d = 0; d < 3; ++d) {
+        if constexpr (Momentum)
+          add_row(grid_.values(b, node_value::p + d) + l, row(c[sp::momentum + d] + i));
+        if constexpr (Force)
+          add_row(grid_.values(b, node_value::f + d) + l, row(c[sp::force + d] + i));
+      }
+    });
+  }
+
+  // v_p <- flip (v_p + sum N dv_I) + (1 - flip) sum N (v_I + dv_I); with Remap, q_I += N m_p v_p.
+  template <bool Remap>
+  void velocity() {
+    namespace vp = kernels::velocity_patch;
+    double* const* c = scratch_.components(vp::count + (Remap ? 3 : 0));
+    each_row([&](std::uint32_t b, int l, int i) {
+      for (int d = 0; d < 3; ++d) {
+        const d4 f = row(grid_.values(b, node_value::f + d) + l);
+        set_row(c[vp::increment + d] + i, f);
+        set_row(c[vp::end + d] + i, row(grid_.values(b, node_value::p + d) + l) + f);
+      }
+    });
+    if constexpr (Remap) zero_patch(c + vp::count, 3, region_);
+    const double flip = a_.flip;
+    for (std::uint32_t k = 0; k < count_; ++k) {
+      const std::uint32_t p = order_[k];
+      double dv[3], vg[3];
+      kernels::gather_velocity_point(st_[k], inv_h_, c, dv, vg);
+      double* v = &P_.velocity[3 * p];
+      for (int d = 0; d < 3; ++d) {
+        v[d] = flip * (v[d] + dv[d]) + (1.0 - flip) * vg[d];
+        P_.grid_velocity[3 * p + d] = vg[d];
+      }
+      if constexpr (Remap) {
+        const double m = P_.mass[p];
+        const double mv[3] = {m * v[0], m * v[1], m * v[2]};
+        kernels::scatter_vector(st_[k], inv_h_, mv, c + vp::count);
+      }
+    }
+    if constexpr (Remap)
+      each_row([&](std::uint32_t b, int l, int i) {
+        for (int d = 0; d < 3; ++d)
+          add_row(grid_.values(b, node_value::q + d) + l, row(c[vp::count + d] + i));
+      });
+  }
+
+  // L_p = sum v_I (x) grad N_I; with Average also tr L_p into out and (V tr L, V) into the sums.
+  template <NodalVelocity Which, bool Average>
+  void gradient() {
+    const int groups = Average ? a_.average->average.groups : 0;
+    double* const* c = scratch_.components(3 + 2 * groups);
+    each_row([&](std::uint32_t b, int l, int i) {
+      for (int d = 0; d < 3; ++d) {
+        const double* p = grid_.values(b, node_value::p + d) + l;
+        if constexpr (Which == NodalVelocity::start) set_row(c[d] + i, row(p));
+        if constexpr (Which == NodalVelocity::end)
+          set_row(c[d] + i, row(p) + row(grid_.values(b, node_value::f + d) + l));
+        if constexpr (Which == NodalVelocity::remapped)
+          set_row(c[d] + i, row(grid_.values(b, node_value::q + d) + l));
+      }
+    });
+    if constexpr (Average) zero_patch(c + 3, 2 * groups, region_);
+    for (std::uint32_t k = 0; k < count_; ++k) {
+      const std::uint32_t p = order_[k];
+      double* L = &P_.velocity_gradient[9 * p];
+      kernels::gather_gradient_point(st_[k], inv_h_, c, L);
+      if constexpr (Average) {
+        const NodeAverage& av = a_.average->average;
+        a_.out[p] = L[0] + L[4] + L[8];
+        if (!av.counts(p)) continue;
+        const double V = P_.volume[p];
+        const auto g = av.group[p];
+        kernels::scatter_pair(st_[k], inv_h_, V * a_.out[p], V, c[3 + 2 * g], c[4 + 2 * g]);
+      }
+    }
+    if constexpr (Average) add_sums(c + 3);
+  }
+
+  // (V_p a_p, V_p) of the counted points into the sums.
+  void average_scatter() {
+    const NodeAverage& av = a_.average->average;
+    double* const* c = scratch_.components(2 * av.groups);
+    zero_patch(c, 2 * av.groups, region_);
+    for (std::uint32_t k = 0; k < count_; ++k) {
+      const std::uint32_t p = order_[k];
+      if (!av.counts(p)) continue;
+      const double V = P_.volume[p];
+      const auto g = av.group[p];
+      kernels::scatter_pair(st_[k], inv_h_, V * av.value[p], V, c[2 * g], c[2 * g + 1]);
+    }
+    add_sums(c);
+  }
+
+  // abar_p of the counted points (0 for the others).
+  void average_gather() {
+    const NodeAverage& av = a_.average->average;
+    double* const* c = scratch_.components(av.groups);
+    load_averages(c);
+    for (std::uint32_t k = 0; k < count_; ++k) {
+      const std::uint32_t p = order_[k];
+      a_.out[p] = av.counts(p) ? kernels::gather_scalar(st_[k], inv_h_, c[av.group[p]]) : 0.0;
+    }
+  }
+
+  // g_I += m_p grad N_I into out (3 per node, in node storage order).
+  void normals() {
+    double* const* c = scratch_.components(3);
+    zero_patch(c, 3, region_);
+    for (std::uint32_t k = 0; k < count_; ++k)
+      kernels::scatter_mass_gradient(st_[k], inv_h_, P_.mass[order_[k]], c);
+    each_row([&](std::uint32_t b, int l, int i) {
+      for (int d = 0; d < 3; ++d)
+        add_row(a_.out + (3 * static_cast<std::size_t>(b) + d) * SparseGrid::block_size + l,
+                row(c[d] + i));
+    });
+  }
+
+  const PassArgs& a_;
+  Particles& P_;
+  const std::array<std::uint32_t, 8>& nb_;
+  const std::uint32_t* order_;
+  std::uint32_t count_;
+  std::vector<PatchStencil<W>>& st_;
+  Scratch& scratch_;
+  SparseGrid& grid_;
+  double inv_h_;
+  PatchRegion region_;
+};
+
+// One owner block of a pass, built for the processor at hand (simd.hpp).
+HVI_SIMD_KERNEL void run_block_linear(const PassArgs& a, std::uint32_t b, Scratch& scratch) {
+  BlockPass<LinearShape>(a, b, scratch).run();
+}
+HVI_SIMD_KERNEL void run_block_gimp(const PassArgs& a, std::uint32_t b, Scratch& scratch) {
+  BlockPass<GimpShape>(a, b, scratch).run();
+}
+
+// Every owner block (with `owners`, those marked), group by group in parallel, a group's blocks
+// in order; `coloured`: colour by colour, so that blocks may add to their nodes (see
+// particle_bins.hpp).
+void run_pass(const PassArgs& a, ShapeFunction shape, bool coloured) {
+  const auto block = shape == ShapeFunction::linear ? run_block_linear : run_block_gimp;
+  const ParticleBins& bins = *a.bins;
+  const auto* owners = a.owners;
+  const auto group = [&](std::uint32_t g, Scratch& scratch) {
+    for (std::uint32_t k = bins.group_offset[g]; k < bins.group_offset[g + 1]; ++k) {
+      const std::uint32_t b = bins.group_owner[k];
+      if (!owners || (*owners)[b]) block(a, b, scratch);
+    }
+  };
+#pragma omp parallel
+  {
+    static thread_local Scratch scratch;  // kept from pass to pass: no allocation in the step
+    if (coloured) {
+      for (const auto& colour : bins.colour) {
+        const auto count = static_cast<std::int64_t>(colour.size());
+#pragma omp for schedule(dynamic, 1)
+        for (std::int64_t i = 0; i < count; ++i) group(colour[i], scratch);
+      }
+    } else {
+      const auto count = static_cast<std::int64_t>(bins.group_offset.size()) - 1;
+#pragma omp for schedule(dynamic, 1)
+      for (std::int64_t i = 0; i < count; ++i) group(static_cast<std::uint32_t>(i), scratch);
+    }
+  }
+}
 
 // Zeroed sums for every block of the grid, 64 nodes x groups x 2 values per block.
 void zero_sums(const SparseGrid& grid, int groups, std::vector<double>& sums) {
@@ -147,203 +458,24 @@ void zero_sums(const SparseGrid& grid, int groups, std::vector<double>& sums) {
   for (std::int64_t b = 0; b < blocks; ++b) std::fill_n(zero + b * block_values, block_values, 0.0);
 }
 
-// abar_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p) over the nodes of p's stencil.
-template <class Shape, class Node>
-double gather_average(const NodeStencil<Shape>& st, Node* const* blocks, double inv_h, const double* sums,
-                      const SumsSlot& slot, std::int64_t group) {
-  double average = 0.0;
-  st.for_each(blocks, inv_h, [&](const GridNode& n, double w, const double*) {
-    const double* sum = &sums[slot(n, group)];
-    if (sum[1] > 0.0) average += w * sum[0] / sum[1];
-  });
-  return average;
-}
-
-// Runs f(b, blocks, origin) for every owner block b, with blocks[o] the eight blocks its
-// particles' stencils reach and origin its first node. Coloured: blocks of one colour in
-// parallel, colour after colour, so f may write nodes (see particle_bins.hpp). Plain: all blocks
-// in parallel, f may only read nodes.
-template <class F>
-void for_each_block_coloured(const ParticleBins& bins, SparseGrid& grid, F&& f) {
-  for (const auto& colour : bins.colour) {
-    const auto count = static_cast<std::int64_t>(colour.size());
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t i = 0; i < count; ++i) {
-      const std::uint32_t b = colour[i];
-      GridNode* blocks[8];
-      for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
-      f(b, blocks, grid.block_origin(b));
-    }
+// Sums (sum N V a, sum N V) to (abar_I, sum N V): the node values the gathers interpolate.
+void finish_averages(std::vector<double>& sums) {
+  constexpr int S = SparseGrid::block_size;
+  const auto arrays =
+      static_cast<std::int64_t>(sums.size() / (2 * S));  // (value, weight) of a block and group
+  double* data = sums.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < arrays; ++i) {
+    double* value = data + i * 2 * S;
+    const double* weight = value + S;
+    for (int l = 0; l < S; ++l) value[l] = weight[l] > 0.0 ? value[l] / weight[l] : 0.0;
   }
-}
-
-template <class F>
-void for_each_block(const ParticleBins& bins, const SparseGrid& grid, F&& f) {
-  const auto owners = static_cast<std::int64_t>(bins.owner_count());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t i = 0; i < owners; ++i) {
-    const auto b = static_cast<std::uint32_t>(i);
-    const GridNode* blocks[8];
-    for (int o = 0; o < 8; ++o) blocks[o] = grid.block(bins.neighbours[b][o]);
-    f(b, blocks, grid.block_origin(b));
-  }
-}
-
-template <class Shape, Scatter What>
-void scatter(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s) {
-  constexpr bool mass = What != Scatter::force;
-  constexpr bool momentum = What != Scatter::force;
-  constexpr bool force = What == Scatter::mass_momentum_force || What == Scatter::force;
-  const NodeAverageSums* mean = force ? s.mean_stress : nullptr;
-  const SumsSlot slot{grid.block(0), mean ? mean->average.groups : 1};
-  for_each_block_coloured(
-      bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
-        NodeStencil<Shape> st;
-        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-          const std::uint32_t p = bins.order[k];
-          s.stencil(st, P, p, origin);
-          const double m = P.mass[p];
-          const double* v = &P.velocity[3 * p];
-          const double mv[3] = {m * v[0], m * v[1], m * v[2]};
-          double vs[6] = {};  // V_p sigma_p
-          if constexpr (force) {
-            const double V = P.volume[p];
-            for (int c = 0; c < 6; ++c) vs[c] = V * P.stress[6 * p + c];
-            if (mean) {  // V_p (mbar_p - m_p) 1, mbar_p from the sums scattered before this pass
-              const NodeAverage& a = mean->average;
-              const double shift =
-                  a.counts(p) ? gather_average(st, blocks, s.inv_h, mean->sums->data(), slot, a.group[p]) - a.value[p]
-                              : 0.0;
-              for (const int c : {sym::xx, sym::yy, sym::zz}) vs[c] += V * shift;
-            }
-          }
-          st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double* g) {
-            if constexpr (mass) n.mass += w * m;
-            if constexpr (momentum) {
-              n.p[0] += w * mv[0];
-              n.p[1] += w * mv[1];
-              n.p[2] += w * mv[2];
-            }
-            if constexpr (force) {
-              n.f[0] -= vs[sym::xx] * g[0] + vs[sym::xy] * g[1] + vs[sym::xz] * g[2];
-              n.f[1] -= vs[sym::xy] * g[0] + vs[sym::yy] * g[1] + vs[sym::yz] * g[2];
-              n.f[2] -= vs[sym::xz] * g[0] + vs[sym::yz] * g[1] + vs[sym::zz] * g[2];
-            }
-          });
-        }
-      });
-}
-
-// One particle's velocity update; with Remap also its share of the remapped momentum.
-template <class Shape, bool Remap, class Blocks>
-void gather_velocity_of(Particles& P, std::uint32_t p, Blocks blocks,
-                        const std::array<int, 3>& origin, const Setup& s, double flip,
-                        NodeStencil<Shape>& st) {
-  s.stencil(st, P, p, origin);
-  double dv[3] = {0, 0, 0}, vg[3] = {0, 0, 0};
-  st.for_each(blocks, s.inv_h, [&](const GridNode& n, double w, const double*) {
-    for (int d = 0; d < 3; ++d) {
-      dv[d] += w * n.f[d];
-      vg[d] += w * (n.p[d] + n.f[d]);
-    }
-  });
-  double* v = &P.velocity[3 * p];
-  for (int d = 0; d < 3; ++d) {
-    v[d] = flip * (v[d] + dv[d]) + (1.0 - flip) * vg[d];
-    P.grid_velocity[3 * p + d] = vg[d];
-  }
-  if constexpr (Remap) {
-    const double m = P.mass[p];
-    const double mv[3] = {m * v[0], m * v[1], m * v[2]};
-    st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
-      n.q[0] += w * mv[0];
-      n.q[1] += w * mv[1];
-      n.q[2] += w * mv[2];
-    });
-  }
-}
-
-template <class Shape>
-void gather_velocity(Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
-                     double flip, bool remap) {
-  if (remap) {  // scatters too: colour by colour, like particles_to_grid
-    for_each_block_coloured(
-        bins, grid,
-        [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
-          NodeStencil<Shape> st;
-          for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
-            gather_velocity_of<Shape, true>(P, bins.order[k], blocks, origin, s, flip, st);
-        });
-    return;
-  }
-  for_each_block(
-      bins, grid,
-      [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
-        NodeStencil<Shape> st;
-        for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k)
-          gather_velocity_of<Shape, false>(P, bins.order[k], blocks, origin, s, flip, st);
-      });
-}
-
-// L_p of the particles of owner block b; with Average also a_p = tr L_p into the dilatation's
-// values and sums (blocks then writable: colour by colour).
-template <class Shape, NodalVelocity Which, bool Average, class Node>
-void gradient_of_block(Particles& P, const ParticleBins& bins, std::uint32_t b, Node* const* blocks,
-                       const std::array<int, 3>& origin, const Setup& s, const NodeAverageSums* dilatation,
-                       double* trace, const SumsSlot& slot) {
-  NodeStencil<Shape> st;
-  for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-    const std::uint32_t p = bins.order[k];
-    s.stencil(st, P, p, origin);
-    double L[9] = {};
-    st.for_each(blocks, s.inv_h, [&](const GridNode& n, double, const double* g) {
-      double v[3];
-      for (int d = 0; d < 3; ++d) {
-        if constexpr (Which == NodalVelocity::start) v[d] = n.p[d];
-        if constexpr (Which == NodalVelocity::end) v[d] = n.p[d] + n.f[d];
-        if constexpr (Which == NodalVelocity::remapped) v[d] = n.q[d];
-      }
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) L[3 * i + j] += v[i] * g[j];
-    });
-    double* Lp = &P.velocity_gradient[9 * p];
-    for (int c = 0; c < 9; ++c) Lp[c] = L[c];
-    if constexpr (Average) {
-      const NodeAverage& a = dilatation->average;
-      trace[p] = Lp[0] + Lp[4] + Lp[8];
-      if (!a.counts(p)) continue;
-      const double V = P.volume[p], Va = V * trace[p];
-      double* sums = dilatation->sums->data();
-      st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
-        double* sum = &sums[slot(n, a.group[p])];
-        sum[0] += w * Va;
-        sum[1] += w * V;
-      });
-    }
-  }
-}
-
-template <class Shape, NodalVelocity Which>
-void gather_gradient(Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
-                     const NodeAverageSums* dilatation, std::vector<double>* trace) {
-  const SumsSlot slot{grid.block(0), dilatation ? dilatation->average.groups : 1};
-  if (!dilatation) {
-    for_each_block(bins, grid, [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
-      gradient_of_block<Shape, Which, false>(P, bins, b, blocks, origin, s, nullptr, nullptr, slot);
-    });
-    return;
-  }
-  zero_sums(grid, dilatation->average.groups, *dilatation->sums);
-  double* t = trace->data();
-  for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
-    gradient_of_block<Shape, Which, true>(P, bins, b, blocks, origin, s, dilatation, t, slot);
-  });
 }
 
 // Without a cache (and for outward_normals, which runs on either field of a contact pair).
 Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
-  return {grid.geometry(), 1.0 / grid.geometry().cell_size,
-          c.half_width ? c.half_width->data() : nullptr, c.mean_stress, nullptr, nullptr};
+  return {&grid.geometry(), 1.0 / grid.geometry().cell_size,
+          c.half_width ? c.half_width->data() : nullptr, nullptr, nullptr};
 }
 
 // With GIMP and a StencilCache: read it if it is filled; else, if this pass visits every binned
@@ -362,94 +494,10 @@ void finish_pass(const Setup& s, const TransferContext& c) {
   if (s.fill) c.stencils->mark_valid();
 }
 
-// sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p) over the counted particles of the group.
-template <class Shape>
-void node_average_scatter_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
-                               const NodeAverageSums& na) {
-  const NodeAverage& a = na.average;
-  zero_sums(grid, a.groups, *na.sums);
-  double* sums = na.sums->data();
-  const SumsSlot slot{grid.block(0), a.groups};
-  for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
-    NodeStencil<Shape> st;
-    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-      const std::uint32_t p = bins.order[k];
-      if (!a.counts(p)) {
-        if (s.fill) s.stencil(st, P, p, origin);  // the cache holds every point's
-        continue;
-      }
-      s.stencil(st, P, p, origin);
-      const double V = P.volume[p], Va = V * a.value[p];
-      st.for_each(blocks, s.inv_h, [&](GridNode& n, double w, const double*) {
-        double* sum = &sums[slot(n, a.group[p])];
-        sum[0] += w * Va;
-        sum[1] += w * V;
-      });
-    }
-  });
-}
-
-// out_p = sum_I N_I(x_p) (sum N V a / sum N V)_(I, group of p) for the binned counted particles.
-template <class Shape>
-void node_average_gather_impl(const Particles& P, const ParticleBins& bins, const SparseGrid& grid, const Setup& s,
-                              const NodeAverageSums& na, std::vector<double>& out) {
-  const NodeAverage& a = na.average;
-  const double* sums = na.sums->data();
-  const SumsSlot slot{grid.block(0), a.groups};
-  out.resize(P.size());
-  for_each_block(bins, grid, [&](std::uint32_t b, const GridNode* const* blocks, const std::array<int, 3>& origin) {
-    NodeStencil<Shape> st;
-    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-      const std::uint32_t p = bins.order[k];
-      if (!a.counts(p)) {
-        out[p] = 0.0;
-        continue;
-      }
-      s.stencil(st, P, p, origin);
-      out[p] = gather_average(st, blocks, s.inv_h, sums, slot, a.group[p]);
-    }
-  });
-}
-
-template <class Shape>
-void outward_normals_impl(const Particles& P, const ParticleBins& bins, SparseGrid& grid, const Setup& s,
-                          std::vector<double>& out, const std::vector<std::uint8_t>* owners) {
-  const GridNode* base = grid.block(0);
-  const auto values = static_cast<std::int64_t>(grid.block_count()) * SparseGrid::block_size * 3;
-  out.resize(static_cast<std::size_t>(values));
-  double* zero = out.data();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < values; ++i) zero[i] = 0.0;
-  for_each_block_coloured(bins, grid, [&](std::uint32_t b, GridNode* const* blocks, const std::array<int, 3>& origin) {
-    if (owners && !(*owners)[b]) return;
-    NodeStencil<Shape> st;
-    for (std::uint32_t k = bins.offset[b]; k < bins.offset[b + 1]; ++k) {
-      const std::uint32_t p = bins.order[k];
-      double a_cells[3];
-      st.evaluate(&P.position[3 * p], s.g, s.inv_h, s.a(p, a_cells), origin);
-      const double m = P.mass[p];
-      st.for_each(blocks, s.inv_h, [&](GridNode& n, double, const double* g) {
-        double* o = &out[3 * static_cast<std::size_t>(&n - base)];
-        for (int d = 0; d < 3; ++d) o[d] += m * g[d];
-      });
-    }
-  });
-}
-
-template <class Shape>
-void scatter_dispatch(Scatter what, const Particles& P, const ParticleBins& bins, SparseGrid& grid,
-                      const Setup& s) {
-  switch (what) {
-    case Scatter::mass_momentum_force:
-      scatter<Shape, Scatter::mass_momentum_force>(P, bins, grid, s);
-      break;
-    case Scatter::mass_momentum:
-      scatter<Shape, Scatter::mass_momentum>(P, bins, grid, s);
-      break;
-    case Scatter::force:
-      scatter<Shape, Scatter::force>(P, bins, grid, s);
-      break;
-  }
+PassArgs pass_args(Pass pass, const Particles& P, const ParticleBins& bins, SparseGrid& grid,
+                   const Setup& s) {
+  // The passes that only read particles take them as const: the cast is not written through.
+  return PassArgs{pass, const_cast<Particles*>(&P), &bins, &grid, s};
 }
 
 }  // namespace
@@ -457,10 +505,10 @@ void scatter_dispatch(Scatter what, const Particles& P, const ParticleBins& bins
 void particles_to_grid(Scatter what, const Particles& particles, const ParticleBins& bins,
                        SparseGrid& grid, const TransferContext& context) {
   const Setup s = make_setup(particles, grid, context, true);
-  if (context.shape == ShapeFunction::linear)
-    scatter_dispatch<LinearShape>(what, particles, bins, grid, s);
-  else
-    scatter_dispatch<GimpShape>(what, particles, bins, grid, s);
+  PassArgs a = pass_args(Pass::scatter, particles, bins, grid, s);
+  a.what = what;
+  if (what != Scatter::mass_momentum) a.average = context.mean_stress;
+  run_pass(a, context.shape, true);
   finish_pass(s, context);
 }
 
@@ -475,39 +523,46 @@ void node_average(const Particles& particles, const ParticleBins& bins, SparseGr
 void node_average_scatter(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                           const TransferContext& context, const NodeAverageSums& sums) {
   const Setup s = make_setup(particles, grid, context, true);
-  if (context.shape == ShapeFunction::linear)
-    node_average_scatter_impl<LinearShape>(particles, bins, grid, s, sums);
-  else
-    node_average_scatter_impl<GimpShape>(particles, bins, grid, s, sums);
+  zero_sums(grid, sums.average.groups, *sums.sums);
+  PassArgs a = pass_args(Pass::average_scatter, particles, bins, grid, s);
+  a.average = &sums;
+  run_pass(a, context.shape, true);
+  finish_averages(*sums.sums);
   finish_pass(s, context);
 }
 
 void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
                          const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out) {
-  const Setup s = make_setup(particles, grid, context, false);  // skips the points that do not count
-  if (context.shape == ShapeFunction::linear)
-    node_average_gather_impl<LinearShape>(particles, bins, grid, s, sums, out);
-  else
-    node_average_gather_impl<GimpShape>(particles, bins, grid, s, sums, out);
+  const Setup s = make_setup(particles, grid, context, false);
+  out.resize(particles.size());
+  PassArgs a = pass_args(Pass::average_gather, particles, bins, const_cast<SparseGrid&>(grid), s);
+  a.average = &sums;
+  a.out = out.data();
+  run_pass(a, context.shape, false);
 }
 
 void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                      const TransferContext& context, std::vector<double>& out,
                      const std::vector<std::uint8_t>* owners) {
   const Setup s = make_setup(grid, context);
-  if (context.shape == ShapeFunction::linear)
-    outward_normals_impl<LinearShape>(particles, bins, grid, s, out, owners);
-  else
-    outward_normals_impl<GimpShape>(particles, bins, grid, s, out, owners);
+  const auto values = static_cast<std::int64_t>(grid.block_count()) * SparseGrid::block_size * 3;
+  out.resize(static_cast<std::size_t>(values));
+  double* zero = out.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < values; ++i) zero[i] = 0.0;
+  PassArgs a = pass_args(Pass::normals, particles, bins, grid, s);
+  a.out = out.data();
+  a.owners = owners;
+  run_pass(a, context.shape, true);
 }
 
 void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                        const TransferContext& context, bool remap) {
   const Setup s = make_setup(particles, grid, context, true);
-  if (context.shape == ShapeFunction::linear)
-    gather_velocity<LinearShape>(particles, bins, grid, s, context.flip, remap);
-  else
-    gather_velocity<GimpShape>(particles, bins, grid, s, context.flip, remap);
+  PassArgs a = pass_args(Pass::velocity, particles, bins, grid, s);
+  a.remap = remap;
+  a.flip = context.flip;
+  run_pass(a, context.shape, remap);
   finish_pass(s, context);
 }
 
@@ -515,27 +570,15 @@ void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGri
                        const TransferContext& context, NodalVelocity which, const NodeAverageSums* dilatation,
                        std::vector<double>* trace) {
   const Setup s = make_setup(particles, grid, context, true);
-  const bool linear = context.shape == ShapeFunction::linear;
-  switch (which) {
-    case NodalVelocity::start:
-      if (linear)
-        gather_gradient<LinearShape, NodalVelocity::start>(particles, bins, grid, s, dilatation, trace);
-      else
-        gather_gradient<GimpShape, NodalVelocity::start>(particles, bins, grid, s, dilatation, trace);
-      break;
-    case NodalVelocity::end:
-      if (linear)
-        gather_gradient<LinearShape, NodalVelocity::end>(particles, bins, grid, s, dilatation, trace);
-      else
-        gather_gradient<GimpShape, NodalVelocity::end>(particles, bins, grid, s, dilatation, trace);
-      break;
-    case NodalVelocity::remapped:
-      if (linear)
-        gather_gradient<LinearShape, NodalVelocity::remapped>(particles, bins, grid, s, dilatation, trace);
-      else
-        gather_gradient<GimpShape, NodalVelocity::remapped>(particles, bins, grid, s, dilatation, trace);
-      break;
+  PassArgs a = pass_args(Pass::gradient, particles, bins, grid, s);
+  a.which = which;
+  a.average = dilatation;
+  if (dilatation) {
+    zero_sums(grid, dilatation->average.groups, *dilatation->sums);
+    a.out = trace->data();
   }
+  run_pass(a, context.shape, dilatation != nullptr);
+  if (dilatation) finish_averages(*dilatation->sums);
   finish_pass(s, context);
 }
 

@@ -26,29 +26,30 @@ struct NodeAverage {
   bool counts(std::size_t p) const { return !(skip && skip[p] > 0.0); }
 };
 
-// A node average's sums, sums[(node, group)] = (sum N_I V_p a_p, sum N_I V_p), kept between the
-// pass that scatters them and the one that gathers abar_p (in another transfer, which saves
-// that transfer's particles a second pass: TransferContext::mean_stress, velocity_gradient).
+// A node average's node values, kept between the pass that scatters them and the ones that gather
+// abar_p (in another transfer, which saves that transfer's particles a second pass:
+// TransferContext::mean_stress, velocity_gradient). Per block and group, two arrays of the block's
+// 64 nodes: once scattered, (sum N_I V_p a_p / sum N_I V_p, sum N_I V_p), the first 0 where the
+// second is.
 struct NodeAverageSums {
   NodeAverage average;
   std::vector<double>* sums = nullptr;
 };
 
-// One point's stencil: the weights N and derivatives dN (in cell units) of its W nodes per axis,
-// its lowest node relative to its owner block's first node, and the nodes of nonzero weight.
-template <int W>
-struct StencilWeights {
-  double N[3][W], dN[3][W];
-  std::int8_t lowest[3];          // per axis, relative to the owner block's first node: 0 .. 2*edge-W
-  std::int8_t first[3], last[3];  // per axis, of 0 .. W-1
+// One point's GIMP stencil as a StencilCache keeps it: the weights N and derivatives dN (in cell
+// units) of its 3 nodes per axis, its lowest node per axis relative to its owner block's first
+// node, and along y and z the first and last node of nonzero weight.
+struct GimpStencil {
+  double N[3][3], dN[3][3];
+  std::int8_t lowest[3];  // 0 .. 3
+  std::int8_t first[2], last[2];
 };
-using GimpStencil = StencilWeights<GimpShape::width>;
-static_assert(sizeof(GimpStencil) == 160);  // 18 doubles and 9 bytes, padded to a double
+static_assert(sizeof(GimpStencil) == 152);  // 18 doubles and 7 bytes, padded to a double
 
 // The GIMP stencils of every point, kept between the passes of one step. A step's passes see the
 // same positions, half-widths and bins from the binning to the domains' stretch, yet without the
 // cache each pass evaluated all 9 weights again: with MUSL and the node average, 5 times a step.
-// Stored, they cost sizeof(GimpStencil) = 160 bytes a point (README, Benchmarks, for what that
+// Stored, they cost sizeof(GimpStencil) = 152 bytes a point (README, Benchmarks, for what that
 // bought). The solver invalidates the cache whenever the points are binned again or their domains
 // stretch; the first transfer after that which visits every binned point fills it as it
 // evaluates, and the ones after read it. The values are the ones each pass would compute, so
@@ -115,8 +116,8 @@ void node_average_scatter(const Particles& particles, const ParticleBins& bins, 
 void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
                          const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out);
 
-// Per node, in the order of the grid's node storage, g_I = sum_p m_p grad N_I(x_p) (three values):
-// about -int N_I grad rho, the outward normal of the particles' material at node I (contact.hpp).
+// g_I = sum_p m_p grad N_I(x_p), about -int N_I grad rho, the outward normal of the particles'
+// material at node I (contact.hpp): component d of node l of block b at out[(3 b + d) 64 + l].
 // With `owners`, only the particles of owner blocks b with owners[b] != 0 scatter (the others'
 // nodes are left at zero).
 void outward_normals(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,

@@ -54,23 +54,23 @@ inline void split_velocity_gradient(const double* L, double* D /*Sym6*/, double*
     for (int j = 0; j < 3; ++j) W[3 * i + j] = 0.5 * (L[3 * i + j] - L[3 * j + i]);
 }
 
-// The co-rotational part of the Jaumann rate, W sigma - sigma W, for symmetric sigma.
+// The co-rotational part of the Jaumann rate, W sigma - sigma W, for symmetric sigma. With W
+// antisymmetric, sigma W = -(W sigma)^T, so the term is A + A^T with A = W sigma, of whose nine
+// entries (two products each, W_ii = 0) the six needed are formed; only W_xy, W_xz, W_yz are read.
 inline void jaumann_spin_term(const double* W, const double* s, double* out /*Sym6*/) {
-  const double S[9] = {s[sym::xx], s[sym::xy], s[sym::xz], s[sym::xy], s[sym::yy],
-                       s[sym::yz], s[sym::xz], s[sym::yz], s[sym::zz]};
-  double R[9];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double acc = 0.0;
-      for (int k = 0; k < 3; ++k) acc += W[3 * i + k] * S[3 * k + j] - S[3 * i + k] * W[3 * k + j];
-      R[3 * i + j] = acc;
-    }
-  out[sym::xx] = R[0];
-  out[sym::xy] = R[1];
-  out[sym::xz] = R[2];
-  out[sym::yy] = R[4];
-  out[sym::yz] = R[5];
-  out[sym::zz] = R[8];
+  const double wxy = W[1], wxz = W[2], wyz = W[5];
+  const double xx = s[sym::xx], xy = s[sym::xy], xz = s[sym::xz], yy = s[sym::yy], yz = s[sym::yz],
+               zz = s[sym::zz];
+  const double a_xx = wxy * xy + wxz * xz, a_yy = -wxy * xy + wyz * yz, a_zz = -wxz * xz - wyz * yz;
+  const double a_xy = wxy * yy + wxz * yz, a_yx = -wxy * xx + wyz * xz;
+  const double a_xz = wxy * yz + wxz * zz, a_zx = -wxz * xx - wyz * xy;
+  const double a_yz = -wxy * xz + wyz * zz, a_zy = -wxz * xy - wyz * yy;
+  out[sym::xx] = 2.0 * a_xx;
+  out[sym::yy] = 2.0 * a_yy;
+  out[sym::zz] = 2.0 * a_zz;
+  out[sym::xy] = a_xy + a_yx;
+  out[sym::xz] = a_xz + a_zx;
+  out[sym::yz] = a_yz + a_zy;
 }
 
 }  // namespace hvi::mpm

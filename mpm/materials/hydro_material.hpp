@@ -14,7 +14,8 @@
 // Failed material keeps only compressive pressure: no deviatoric stress, no tension. Eroded
 // material keeps its mass, momentum and internal energy but no stress at all: it moves as a free
 // point mass, its volume frozen (the hydrocode's "retain inertia of eroded nodes").
-// A model that is not named declares no field and runs no loop.
+// A model that is not named declares no field and runs no code. The update is one pass over the
+// material's points, each model in turn on each point, timed as one phase named after the models.
 #include <optional>
 
 #include "mpm/material.hpp"
@@ -88,14 +89,20 @@ class HydroMaterial : public Material {
   double signal_speed(const Particles& P, std::size_t p, const double* pressure, const double* failed_state) const;
 
  private:
-  void update_deviatoric(Particles& P, ParticleRange r, double dt) const;
-  void update_pressure(Particles& P, ParticleRange r, double dt) const;
-  void update_temperature(Particles& P, ParticleRange r) const;
-  void accumulate_damage(Particles& P, ParticleRange r, double dt) const;
-  void check_principal_stress(Particles& P, ParticleRange r) const;
-  void accumulate_spall(Particles& P, ParticleRange r, double dt) const;
-  void erode_crushed(Particles& P, ParticleRange r, double dt) const;
-  double signal_speed_and_check(Particles& P, ParticleRange r, std::int64_t& bad) const;
+  struct State;
+  State state(Particles& P) const;
+  std::string phase_name() const;
+  // The models' work on point p over one step, in this order.
+  void update_deviatoric(Particles& P, std::int64_t p, const State& st, double dt,
+                         const VolumeChange& V) const;
+  void update_pressure(Particles& P, std::int64_t p, const State& st, double dt,
+                       const VolumeChange& V) const;
+  void update_temperature(Particles& P, std::int64_t p, const State& st) const;
+  void accumulate_damage(Particles& P, std::int64_t p, const State& st, double dt) const;
+  void check_principal_stress(Particles& P, std::int64_t p, const State& st) const;
+  void accumulate_spall(Particles& P, std::int64_t p, const State& st, double dt) const;
+  void erode_crushed(Particles& P, std::int64_t p, const State& st, double dt,
+                     const VolumeChange& V) const;
   // The "failed" field exists when a model can fail or erode a particle.
   bool can_fail() const {
     return models_.damage || models_.max_principal_stress || models_.tuler_butcher || models_.erosion;
@@ -103,6 +110,7 @@ class HydroMaterial : public Material {
 
   HydroModels models_;
   double G_, K_;
+  std::string phase_name_;  // its row in the timing table
 };
 
 }  // namespace hvi::mpm

@@ -25,4 +25,15 @@ inline double max_principal(const double* s) {
   return q + 2.0 * p * std::cos(phi);
 }
 
+// Whether the largest principal value reaches `limit`: max_principal(s) >= limit, computed only
+// when Gershgorin's bound, sigma_1 <= max_i (s_ii + sum_j!=i |s_ij|), does not already rule it out
+// (with a margin far above the round-off of either form, so the answer is the same).
+inline bool principal_reaches(const double* s, double limit) {
+  const double xy = std::fabs(s[sym::xy]), xz = std::fabs(s[sym::xz]), yz = std::fabs(s[sym::yz]);
+  const double bound = std::max({s[sym::xx] + xy + xz, s[sym::yy] + xy + yz, s[sym::zz] + xz + yz});
+  const double margin = 1e-9 * (std::fabs(bound) + xy + xz + yz + std::fabs(limit));
+  if (bound + margin < limit) return false;
+  return max_principal(s) >= limit;
+}
+
 }  // namespace hvi::mpm

@@ -1,5 +1,6 @@
 // A scene simulates only the effects it asks for: a model a material does not name declares no
-// particle field (so none is allocated or written) and runs no phase (so none is timed).
+// particle field (so none is allocated or written) and runs no code (so no phase names it).
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -18,6 +19,12 @@ namespace {
 // particle fields, the timed phases and the datasets of a snapshot.
 struct Effects {
   std::set<std::string> fields, phases, datasets;
+  // A phase of the timing table names it: a material's models share one phase, whose name lists
+  // them ("strength: johnson-cook | eos: mie-gruneisen + viscosity | ...").
+  bool runs(const std::string& name) const {
+    return std::any_of(phases.begin(), phases.end(),
+                       [&](const std::string& p) { return p.find(name) != std::string::npos; });
+  }
 };
 
 Effects run_with(const std::vector<std::string>& models, const std::vector<std::string>& scene_keys = {}) {
@@ -75,7 +82,7 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
       EXPECT_TRUE(full.fields.count(f)) << f;
       EXPECT_TRUE(full.datasets.count(f)) << f;
     }
-    EXPECT_TRUE(full.phases.count(m.phase)) << m.phase;
+    EXPECT_TRUE(full.runs(m.phase)) << m.phase;
   }
   // Drop each model in turn (damage and heating need johnson-cook strength, so keep it for them).
   for (const auto& m : models) {
@@ -88,7 +95,7 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
     }
     if (m.key == "strength=johnson-cook") without = {"eos=mie-gruneisen", "viscosity=bulk"};
     const Effects e = run_with(without);
-    EXPECT_FALSE(e.phases.count(m.phase)) << m.phase;
+    EXPECT_FALSE(e.runs(m.phase)) << m.phase;
     for (const auto& f : m.fields) {
       // "failed" belongs to damage, failure and erosion: it goes only when none is named.
       const bool shared = f == "failed" && (m.key == "damage=johnson-cook" || m.key == "failure=max-principal-stress" ||
@@ -101,8 +108,8 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
   // With no damage, failure or erosion there is no failure state at all.
   const Effects plain = run_with({"strength=johnson-cook"});
   EXPECT_FALSE(plain.fields.count("failed"));
-  EXPECT_TRUE(plain.phases.count("strength: johnson-cook"));
-  EXPECT_TRUE(plain.phases.count("eos: elastic bulk"));
+  EXPECT_TRUE(plain.runs("strength: johnson-cook"));
+  EXPECT_TRUE(plain.runs("eos: elastic bulk"));
 }
 
 // Tuler-Butcher spall is the other choice of `failure`: its damage field, the failure state and
@@ -118,8 +125,8 @@ TEST(Effects, TulerButcherIsAllocatedComputedAndWrittenOnlyWhenNamed) {
     EXPECT_TRUE(named.fields.count(f)) << f;
     EXPECT_TRUE(named.datasets.count(f)) << f;
   }
-  EXPECT_FALSE(plain.phases.count("failure: tuler-butcher"));
-  EXPECT_TRUE(named.phases.count("failure: tuler-butcher"));
+  EXPECT_FALSE(plain.runs("failure: tuler-butcher"));
+  EXPECT_TRUE(named.runs("failure: tuler-butcher"));
 }
 
 // A scene setting that adds phases to the step runs them only when named, and adds no particle
@@ -129,8 +136,8 @@ void phases_only_when_named(const std::string& setting, const std::vector<std::s
   const Effects plain = run_with(jc);
   const Effects named = run_with(jc, {setting});
   for (const auto& phase : phases) {
-    EXPECT_FALSE(plain.phases.count(phase)) << phase;
-    EXPECT_TRUE(named.phases.count(phase)) << phase;
+    EXPECT_FALSE(plain.runs(phase)) << phase;
+    EXPECT_TRUE(named.runs(phase)) << phase;
   }
   EXPECT_EQ(plain.fields, named.fields);
   EXPECT_EQ(plain.datasets, named.datasets);

@@ -22,7 +22,6 @@ int check_constrained_nodes(const SparseGrid& grid, const GridBoundary& c) {
   int with_mass = 0;
   for (std::uint32_t b = 0; b < grid.block_count(); ++b) {
     const auto origin = grid.block_origin(b);
-    const GridNode* nodes = grid.block(b);
     for (int lz = 0; lz < SparseGrid::block_edge; ++lz)
       for (int ly = 0; ly < SparseGrid::block_edge; ++ly)
         for (int lx = 0; lx < SparseGrid::block_edge; ++lx) {
@@ -30,7 +29,7 @@ int check_constrained_nodes(const SparseGrid& grid, const GridBoundary& c) {
           const bool covered =
               c.outside_below ? index[c.axis] <= c.plane : index[c.axis] >= c.plane;
           if (!covered) continue;
-          const GridNode& n = nodes[local_node(lx, ly, lz)];
+          const ConstGridNode n = grid.node(b, local_node(lx, ly, lz));
           if (n.mass > 0) ++with_mass;
           for (int d = 0; d < 3; ++d) {
             if (c.type == BoundaryType::symmetry && d != c.axis) continue;

@@ -177,24 +177,26 @@ TEST(ShapeFunctions, GimpContinuity) {
   }
 }
 
-// GimpShape::weights selects its piece without branching (for speed, mpm/shape_functions.hpp).
-// The piecewise form, written out as the uGIMP formula reads, must give the same bits: a run's
-// output is compared byte for byte between builds and thread counts. Random points, and points on
-// and beside the joints |d| = a, 1 - a, 1 + a (where a wrong comparison would pick the neighbouring
-// piece, whose value agrees to round-off only), all bit for bit.
+// GimpShape::weights selects its piece without branching, for the three nodes in one short vector
+// (for speed, mpm/shape_functions.hpp). The piecewise form, written out as the uGIMP formula reads
+// (its quotients by 2a and 4a as products with 1/a, as the kernel forms them), must give the same
+// bits: a run's output is compared byte for byte between builds and thread counts. Random points,
+// and points on and beside the joints |d| = a, 1 - a, 1 + a (where a wrong comparison would pick
+// the neighbouring piece, whose value agrees to round-off only), all bit for bit.
 void piecewise_gimp(double d, double a, double& N, double& dN) {
   const double ad = std::fabs(d);
   const double sgn = d < 0.0 ? -1.0 : 1.0;
+  const double r = 1.0 / a;
   if (ad < a) {
-    N = 1.0 - (d * d + a * a) / (2.0 * a);
-    dN = -d / a;
+    N = 1.0 - (d * d + a * a) * (0.5 * r);
+    dN = -d * r;
   } else if (ad < 1.0 - a) {
     N = 1.0 - ad;
     dN = -sgn;
   } else if (ad < 1.0 + a) {
     const double u = 1.0 + a - ad;
-    N = u * u / (4.0 * a);
-    dN = -sgn * u / (2.0 * a);
+    N = u * u * (0.25 * r);
+    dN = -sgn * u * (0.5 * r);
   } else {
     N = 0.0;
     dN = 0.0;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -53,9 +54,8 @@ struct Sums {
 Sums nodal_sums(const SparseGrid& grid) {
   Sums s;
   for (std::uint32_t b = 0; b < grid.block_count(); ++b) {
-    const GridNode* nodes = grid.block(b);
     for (int k = 0; k < SparseGrid::block_size; ++k) {
-      const GridNode& n = nodes[k];
+      const ConstGridNode n = grid.node(b, k);
       s.mass += n.mass;
       for (int d = 0; d < 3; ++d) {
         s.momentum[d] += n.p[d];
@@ -158,9 +158,9 @@ std::size_t blocks_for_two_clusters(int separation, ShapeFunction shape, std::ui
                 {});
   // Nodes midway between the clusters are not stored.
   const int mid = 10 + separation / 2;
-  EXPECT_EQ(grid.node(mid, mid, mid), nullptr);
-  EXPECT_NE(grid.node(10, 10, 10), nullptr);
-  EXPECT_NE(grid.node(10 + separation, 10 + separation, 10 + separation), nullptr);
+  EXPECT_FALSE(grid.node(mid, mid, mid).has_value());
+  EXPECT_TRUE(grid.node(10, 10, 10).has_value());
+  EXPECT_TRUE(grid.node(10 + separation, 10 + separation, 10 + separation).has_value());
   return grid.block_count();
 }
 
@@ -208,7 +208,7 @@ PassResults run_passes(Cloud& c, const GridGeometry& g, StencilCache* cache, con
   node_average_gather(c.P, bins, grid, ctx, mean, r.average);
   for (std::uint32_t b = 0; b < grid.block_count(); ++b)
     for (int k = 0; k < SparseGrid::block_size; ++k) {
-      const GridNode& n = grid.block(b)[k];
+      const ConstGridNode n = std::as_const(grid).node(b, k);
       r.nodes.insert(r.nodes.end(), {n.mass, n.p[0], n.p[1], n.p[2], n.f[0], n.f[1], n.f[2], n.q[0], n.q[1], n.q[2]});
     }
   r.velocity = c.P.velocity;

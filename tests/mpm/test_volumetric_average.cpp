@@ -129,7 +129,7 @@ TEST_P(NodeAverageTest, ForceScatterTakesTheMeanStressAverageInItsPass) {
   std::vector<double> f_fused;
   for (std::uint32_t b = 0; b < c.grid.block_count(); ++b)
     for (int k = 0; k < SparseGrid::block_size; ++k)
-      f_fused.insert(f_fused.end(), c.grid.block(b)[k].f, c.grid.block(b)[k].f + 3);
+      for (int d = 0; d < 3; ++d) f_fused.push_back(c.grid.node(b, k).f[d]);
 
   std::vector<double> average;
   node_average_gather(c.P, c.bins, c.grid, c.context, sums, average);
@@ -137,15 +137,16 @@ TEST_P(NodeAverageTest, ForceScatterTakesTheMeanStressAverageInItsPass) {
     if (skip[p] == 0.0)
       for (const int k : {sym::xx, sym::yy, sym::zz}) c.P.stress[6 * p + k] += average[p] - mean[p];
   for (std::uint32_t b = 0; b < c.grid.block_count(); ++b)
-    for (int k = 0; k < SparseGrid::block_size; ++k) std::fill_n(c.grid.block(b)[k].f, 3, 0.0);
+    for (int k = 0; k < SparseGrid::block_size; ++k)
+      for (int d = 0; d < 3; ++d) c.grid.node(b, k).f[d] = 0.0;
   particles_to_grid(Scatter::force, c.P, c.bins, c.grid, c.context);
   double scale = 0.0, worst = 0.0;
   std::size_t i = 0;
   for (std::uint32_t b = 0; b < c.grid.block_count(); ++b)
     for (int k = 0; k < SparseGrid::block_size; ++k)
       for (int d = 0; d < 3; ++d, ++i) {
-        scale = std::max(scale, std::fabs(c.grid.block(b)[k].f[d]));
-        worst = std::max(worst, std::fabs(c.grid.block(b)[k].f[d] - f_fused[i]));
+        scale = std::max(scale, std::fabs(c.grid.node(b, k).f[d]));
+        worst = std::max(worst, std::fabs(c.grid.node(b, k).f[d] - f_fused[i]));
       }
   EXPECT_GT(scale, 0.0);
   EXPECT_LT(worst, 1e-13 * scale);
