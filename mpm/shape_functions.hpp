@@ -9,9 +9,6 @@
 
 #include "mpm/simd.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"  // see simd.hpp
-
 namespace hvi::mpm {
 
 enum class ShapeFunction {
@@ -111,4 +108,3 @@ struct GimpShape {
 
 }  // namespace hvi::mpm
 
-#pragma GCC diagnostic pop

@@ -7,11 +7,6 @@
 // bits as the portable path, and a lane the same bits as the scalar expression it stands for.
 #include <cstring>
 
-// Four-lane values pass between inline functions only, never across a call boundary of the
-// portable build, so the AVX calling convention GCC warns about (-Wpsabi) never applies.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 namespace hvi::mpm::simd {
 
 typedef double d2 __attribute__((vector_size(16)));
@@ -66,7 +61,6 @@ inline d4 sum4(d4 a, d4 b, d4 c, d4 d) {
 
 }  // namespace hvi::mpm::simd
 
-#pragma GCC diagnostic pop
 
 // A kernel built twice, for x86-64-v3 (AVX2) and for the build's own target, the loader picking
 // the one the processor runs (GCC function multi-versioning); `flatten` inlines what it calls, so

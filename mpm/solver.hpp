@@ -49,7 +49,7 @@ struct SolverSettings {
   int reorder_interval = 16;  // steps between sorting particle arrays by material and block
   Dilatation dilatation = Dilatation::particle;
   // GIMP on one field: keep the points' stencils between a step's transfers (transfers.hpp).
-  bool stencil_cache = true;
+  bool stencil_cache = false;
   // Two velocity fields with contact between them (contact.hpp); none: one field, bodies stick.
   std::optional<ContactSettings> contact;
 };

@@ -12,9 +12,6 @@
 #include "mpm/simd.hpp"
 #include "mpm/types.hpp"
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"  // see simd.hpp
-
 namespace hvi::mpm::kernels {
 
 // f(row offset in the patch, Ny Nz, dNy Nz / h, Ny dNz / h) for the NY x NZ rows from (y0, z0).
@@ -200,4 +197,3 @@ inline void scatter_mass_gradient(const PatchStencil<W>& st, double inv_h, doubl
 
 }  // namespace hvi::mpm::kernels
 
-#pragma GCC diagnostic pop

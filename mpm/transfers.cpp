@@ -14,9 +14,6 @@
 // scattered to the nodes. A pass that scatters runs colour by colour, blocks of one colour in
 // parallel, so each node receives its blocks' patches in the same order for any thread count.
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"  // four-lane values between inlined kernels (simd.hpp)
-
 namespace hvi::mpm {
 namespace {
 

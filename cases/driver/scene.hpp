@@ -36,7 +36,7 @@ struct GridSettings {
   std::array<int, 3> cells{};
   std::string shape_function, scheme;
   std::string dilatation = "particle";  // particle | node-average
-  bool stencil_cache = true;
+  bool stencil_cache = false;
   double flip = 1.0, cfl = 0.5;
   std::optional<double> max_time_step;
 };

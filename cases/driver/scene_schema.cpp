@@ -58,11 +58,11 @@ TableSpec grid_table() {
               "node-average (averaged through the grid nodes over the intact points of its body, "
               "with the mean stress averaged alike in the force: lifts the volumetric locking of walls "
               "a few cells thick; see README)")
-      .boolean("stencil_cache", true,
+      .boolean("stencil_cache", false,
                "Keep each point's GIMP weights from the first transfer of a step to the last: the same "
-               "results to the bit, 160 bytes a point, fewer evaluations (MUSL: 5 a step with the node "
-               "average, 3 without, become 1); false: every transfer evaluates its own. Not used with "
-               "linear shape functions or [contact]")
+               "results to the bit, 152 bytes a point; false: every transfer evaluates its own, which "
+               "costs less than streaming the stored weights (docs/verification/benchmarks.md). Not "
+               "used with linear shape functions or [contact]")
       .number("cfl", left_open(0, 0.9), 0.5,
               "Courant number: dt = cfl h / max(sound speed + particle speed). At most 0.9: dt comes "
               "from the previous step's sound speed and a shock stiffens the material within a step")

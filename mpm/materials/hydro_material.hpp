@@ -95,8 +95,10 @@ class HydroMaterial : public Material {
   // The models' work on point p over one step, in this order.
   void update_deviatoric(Particles& P, std::int64_t p, const State& st, double dt,
                          const VolumeChange& V) const;
-  void update_pressure(Particles& P, std::int64_t p, const State& st, double dt,
-                       const VolumeChange& V) const;
+  void update_pressure(Particles& P, std::int64_t p, const State& st, double dt, const VolumeChange& V,
+                       MieGruneisen::AtDensity& eos) const;
+  // sqrt(c_bulk^2 + 4 G / (3 rho)), without the shear wave where there is no strength.
+  double wave_speed(double bulk2, double rho, bool failed) const;
   void update_temperature(Particles& P, std::int64_t p, const State& st) const;
   void accumulate_damage(Particles& P, std::int64_t p, const State& st, double dt) const;
   void check_principal_stress(Particles& P, std::int64_t p, const State& st) const;

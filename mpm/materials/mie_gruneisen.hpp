@@ -55,20 +55,37 @@ struct MieGruneisen {
   double energy_coefficient(double rho) const { return gamma0 * std::min(rho, reference_density); }
   double pressure(double rho, double e) const { return cold_part(rho) + energy_coefficient(rho) * e; }
 
+  // What the EOS needs of a density, computed once for the pressure update and the sound speeds
+  // of a point: p = cold + B e, and dp/dmu at fixed e but for the expansion branch's e term.
+  struct AtDensity {
+    double rho, mu, B, cold, dp_dmu;
+  };
+  AtDensity at(double rho) const {
+    AtDensity a{rho, rho / reference_density - 1.0, energy_coefficient(rho), 0.0, 0.0};
+    const double mu = a.mu, pH = hugoniot_pressure(mu), slope = hugoniot_slope(mu);
+    if (mu < 0.0) {
+      a.cold = pH;
+      a.dp_dmu = slope;
+    } else {
+      const double gamma = gamma0 / (1.0 + mu);  // Gamma = Gamma0 rho0 / rho
+      a.cold = pH * (1.0 - 0.5 * gamma * mu);
+      a.dp_dmu = slope * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) - pH * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
+    }
+    return a;
+  }
+
   // Squared bulk sound speed c^2 = dp/drho|_e + p / rho^2 dp/de|_rho, floored at a tenth of c0^2
   // so that a state in tension keeps a meaningful time step.
-  double bulk_sound_speed_squared(double rho, double p) const {
-    const double mu = rho / reference_density - 1.0;
-    const double B = energy_coefficient(rho);
-    // In expansion d(Gamma0 rho e)/dmu = Gamma0 rho0 e, with e recovered from p.
-    const double e = (p - cold_part(rho)) / B;
-    const double dp_dmu_e =
-        mu < 0.0 ? hugoniot_slope(mu) + gamma0 * reference_density * std::max(e, 0.0)
-                 : hugoniot_slope(mu) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) -
-                       hugoniot_pressure(mu) * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
-    const double c2 = dp_dmu_e / reference_density + p * B / (rho * rho);
+  double bulk_sound_speed_squared(const AtDensity& a, double p) const {
+    double dp_dmu_e = a.dp_dmu;
+    if (a.mu < 0.0) {  // in expansion d(Gamma0 rho e)/dmu = Gamma0 rho0 e, with e recovered from p
+      const double e = (p - a.cold) / a.B;
+      dp_dmu_e += gamma0 * reference_density * std::max(e, 0.0);
+    }
+    const double c2 = dp_dmu_e / reference_density + p * a.B / (a.rho * a.rho);
     return std::max(c2, 0.1 * c0 * c0);
   }
+  double bulk_sound_speed_squared(double rho, double p) const { return bulk_sound_speed_squared(at(rho), p); }
 };
 
 }  // namespace hvi::mpm

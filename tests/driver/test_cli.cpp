@@ -90,8 +90,8 @@ TEST(Cli, OutputIsBitwiseIdenticalForOneAndTwoThreads) {
 }
 
 // grid.stencil_cache keeps each point's GIMP weights between a step's transfers: the output is
-// the same bytes with it and without it, for MUSL with the node average (one evaluation a step
-// instead of five) and for USF, which scatters mass and force in separate passes. On 2 threads:
+// the same bytes with it and without it (the default), for MUSL with the node average (one
+// evaluation a step instead of five) and for USF, which scatters mass and force in separate passes. On 2 threads:
 // USF with cpGIMP and the node average differed from run to run while it stretched the domains
 // between its transfers (a domain outgrowing its owner block's stencil wrote outside its colour).
 TEST(Cli, OutputIsBitwiseIdenticalWithAndWithoutTheStencilCache) {
@@ -100,7 +100,7 @@ TEST(Cli, OutputIsBitwiseIdenticalWithAndWithoutTheStencilCache) {
     const std::string set = " --threads 2 --set grid.shape_function=cpgimp --set grid.dilatation=node-average"
                             " --set grid.scheme=" + scheme;
     const fs::path on = scratch("cache_on_" + scheme), off = scratch("cache_off_" + scheme);
-    ASSERT_EQ(run("run " + scene + " --out " + on.string() + set), 0);
+    ASSERT_EQ(run("run " + scene + " --out " + on.string() + set + " --set grid.stencil_cache=true"), 0);
     ASSERT_EQ(run("run " + scene + " --out " + off.string() + set + " --set grid.stencil_cache=false"), 0);
     expect_same_output(on, off);
   }

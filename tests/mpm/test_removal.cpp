@@ -136,5 +136,40 @@ TEST(Removal, LedgerAndEventsGimp) {
   leave_domain(ShapeFunction::gimp);
 }
 
+// Particles::erase takes points out of groups that must stay contiguous (a solver's materials):
+// each group's last points fill its gaps. Every survivor keeps all its fields, no removed point
+// remains, each group keeps its survivors, and a group emptied entirely disappears.
+TEST(Removal, EraseKeepsGroupsContiguousAndEverySurvivor) {
+  Particles P;
+  P.add_field("damage", FieldKind::scalar, "1");
+  const std::vector<std::size_t> sizes = {10, 3, 0, 25, 7};
+  std::size_t n = 0;
+  for (std::size_t g = 0; g < sizes.size(); ++g)
+    for (std::size_t k = 0; k < sizes[g]; ++k, ++n) {
+      P.resize(n + 1);
+      P.field("damage")[n] = 0.5 * static_cast<double>(n);
+      P.id[n] = static_cast<std::int64_t>(n);
+      P.material[n] = static_cast<std::int64_t>(g);
+      for (int d = 0; d < 3; ++d) P.position[3 * n + d] = static_cast<double>(n) + 0.1 * d;
+    }
+  // From the first group's start and end, all of the second group, the middle and end of the fourth.
+  const std::vector<std::uint32_t> removed = {0, 1, 9, 10, 11, 12, 20, 21, 30, 37, 44};
+  P.erase(removed, sizes);
+  const std::set<std::uint32_t> gone(removed.begin(), removed.end());
+  ASSERT_EQ(P.size(), n - removed.size());
+  std::set<std::int64_t> ids;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const auto id = P.id[p];
+    EXPECT_FALSE(gone.count(static_cast<std::uint32_t>(id))) << id;
+    ids.insert(id);
+    EXPECT_EQ(P.field("damage")[p], 0.5 * static_cast<double>(id));
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(P.position[3 * p + d], static_cast<double>(id) + 0.1 * d);
+    if (p > 0) {
+      EXPECT_LE(P.material[p - 1], P.material[p]) << "groups must stay contiguous and in order";
+    }
+  }
+  EXPECT_EQ(ids.size(), P.size());
+}
+
 }  // namespace
 }  // namespace hvi::mpm::test

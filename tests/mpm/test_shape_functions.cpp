@@ -3,6 +3,7 @@
 // the fixed stencil starting at lowest() covers the whole support, and that the branch-free uGIMP
 // weights are bit for bit the piecewise formula.
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -229,6 +230,55 @@ TEST(ShapeFunctions, GimpWeightsBitwiseThePiecewiseForm) {
           expect_bitwise_piecewise(std::nextafter(s, -1e9), a);
           expect_bitwise_piecewise(std::nextafter(s, 1e9), a);
         }
+}
+
+// GimpShape::weights_from_lowest, the transfers' path: one piece test per axis, the three axes in
+// one short vector. Each value is the expression weights() forms for its piece, so the two agree
+// to the bit, but where weights() and the one test pick neighbouring pieces, within round-off of
+// a joint |d| = a, 1 - a, 1 + a. There the pieces agree to within the round-off of d, a few ulps of
+// s, times their slopes (dN' <= 1 / a): 8 ulp(|s| + 1) / a.
+TEST(ShapeFunctions, GimpWeightsFromTheLowestNodeAreWeights) {
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(-50.0, 50.0), half(0.01, 0.5);
+  int exact = 0, samples = 0;
+  for (int k = 0; k < kSamples; ++k) {
+    double s[3], a[3], N[3][4], dN[3][4];
+    int i0[3];
+    for (int d = 0; d < 3; ++d) {
+      s[d] = u(rng);
+      a[d] = half(rng);
+      if (k % 4 == 0) s[d] = std::round(s[d]) + (d == 0 ? a[d] : d == 1 ? 1.0 - a[d] : -a[d]);  // on joints
+      i0[d] = GimpShape::lowest(s[d], a[d]);
+    }
+    GimpShape::weights_from_lowest(s, a, i0, N, dN);
+    for (int d = 0; d < 3; ++d) {
+      double Nr[3], dNr[3];
+      GimpShape::weights(s[d], i0[d], a[d], Nr, dNr);
+      bool same = N[d][3] == 0.0 && dN[d][3] == 0.0;
+      const double tolerance = 8 * std::numeric_limits<double>::epsilon() * (std::fabs(s[d]) + 1.0) / a[d];
+      for (int j = 0; j < 3; ++j) {
+        ASSERT_NEAR(N[d][j], Nr[j], tolerance) << "s = " << s[d] << ", a = " << a[d] << ", node " << j;
+        ASSERT_NEAR(dN[d][j], dNr[j], tolerance) << "s = " << s[d] << ", a = " << a[d] << ", node " << j;
+        same = same && N[d][j] == Nr[j] && dN[d][j] == dNr[j];
+      }
+      exact += same;
+      ++samples;
+    }
+  }
+  // Away from the joints every value is the same bits: all but a few of the points on them.
+  EXPECT_GT(exact, samples * 9 / 10);
+}
+
+// simd::sum4 adds each vector's lanes in the order of simd::sum, so the four sums are the same bits.
+TEST(Simd, FourSumsAtOnceAddInTheOrderOfOne) {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 1000; ++k) {
+    simd::d4 v[4];
+    for (auto& x : v) x = simd::d4{u(rng), 1e10 * u(rng), u(rng), 1e-10 * u(rng)};
+    const simd::d4 s = simd::sum4(v[0], v[1], v[2], v[3]);
+    for (int j = 0; j < 4; ++j) ASSERT_EQ(s[j], simd::sum(v[j]));
+  }
 }
 
 }  // namespace

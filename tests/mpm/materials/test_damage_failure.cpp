@@ -30,6 +30,27 @@ TEST(PrincipalStress, LargestEigenvalueMatchesEigen) {
   }
 }
 
+// The failure test skips the eigenvalue where Gershgorin's bound already rules failure out; it
+// must answer as max_principal(s) >= limit does, also for limits at the largest principal value
+// itself and a few ulps either side, and for diagonal tensors (where the bound is exact).
+TEST(PrincipalStress, BoundedTestAnswersAsTheEigenvalue) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1e9, 1e9);
+  int reached = 0;
+  for (int k = 0; k < 20000; ++k) {
+    double s[6];
+    for (double& c : s) c = u(rng);
+    if (k % 10 == 0) s[sym::xy] = s[sym::xz] = s[sym::yz] = 0.0;
+    const double sigma_1 = max_principal(s);
+    for (const double limit : {u(rng), sigma_1, std::nextafter(sigma_1, 1e10), std::nextafter(sigma_1, -1e10),
+                               sigma_1 * (1 + 1e-12), 5e8}) {
+      ASSERT_EQ(principal_reaches(s, limit), sigma_1 >= limit) << k;
+      reached += sigma_1 >= limit;
+    }
+  }
+  EXPECT_GT(reached, 20000);  // both answers are tried
+}
+
 TEST(JohnsonCookDamage, FailureStrainEqualsEquationThree) {
   const JohnsonCookDamage d = *find_library_material("Al6061")->parameters.damage;
   // sigma* = 1/3 (uniaxial tension), rate 100/s, T* = 0.2:
