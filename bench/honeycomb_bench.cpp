@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <string>
 
-#include "bench/phase_counters.hpp"
+#include "bench/counters.hpp"
 #include "cases/driver/build_solver.hpp"
 #include "cases/driver/scene.hpp"
 #include "mpm/io/checkpoint.hpp"
@@ -80,8 +80,7 @@ void Honeycomb(benchmark::State& state, bool node_average) {
   omp_set_num_threads(threads);
   const auto scene = demo_scene(node_average);
   const int steps = ::steps();
-  double particles = 0, bytes = 0;
-  hvi::mpm::PhaseTimer phases;
+  hvi::bench::Measured measured;
   for (auto _ : state) {
     state.PauseTiming();
     auto solver = hvi::driver::make_solver(scene);
@@ -89,20 +88,13 @@ void Honeycomb(benchmark::State& state, bool node_average) {
     // Warm-up: the first steps after a restore fault in the pages of the grid and caches.
     for (int s = 0; s < warmup_steps; ++s) solver->step();
     solver->timer().clear();
-    particles = static_cast<double>(solver->particles().size());
     state.ResumeTiming();
     for (int s = 0; s < steps; ++s) solver->step();
     state.PauseTiming();
-    bytes = static_cast<double>(solver->bytes());
-    phases = solver->timer();
+    measured.take(*solver);
     state.ResumeTiming();
   }
-  state.counters["particles"] = particles;
-  state.counters["threads"] = threads;
-  state.counters["particle_steps_per_s"] =
-      benchmark::Counter(particles * steps * state.iterations(), benchmark::Counter::kIsRate);
-  state.counters["bytes_per_particle"] = bytes / particles;
-  hvi::bench::add_phase_counters(state, phases);
+  hvi::bench::report(state, measured, steps);
 }
 
 void HoneycombParticle(benchmark::State& state) {

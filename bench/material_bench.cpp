@@ -5,7 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "bench/phase_counters.hpp"
+#include "bench/counters.hpp"
 
 #include "cases/driver/build_solver.hpp"
 #include "cases/driver/scene.hpp"
@@ -52,8 +52,7 @@ void TaylorBar(benchmark::State& state, const Rung& rung) {
   for (const auto& s : rung.settings) overrides.push_back("material.42CrMo4." + s);
   const auto scene = hvi::scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/taylor_bar.toml", overrides);
   const int steps = 100;
-  double particles = 0, bytes = 0;
-  hvi::mpm::PhaseTimer phases;
+  hvi::bench::Measured measured;
   for (auto _ : state) {
     state.PauseTiming();
     auto solver = hvi::driver::make_solver(scene);
@@ -62,16 +61,10 @@ void TaylorBar(benchmark::State& state, const Rung& rung) {
     state.ResumeTiming();
     for (int k = 0; k < steps; ++k) solver->step();
     state.PauseTiming();
-    particles = static_cast<double>(solver->particles().size());
-    bytes = static_cast<double>(solver->bytes());
-    phases = solver->timer();
+    measured.take(*solver);
     state.ResumeTiming();
   }
-  state.counters["threads"] = static_cast<double>(state.range(0));
-  state.counters["particle_steps_per_s"] =
-      benchmark::Counter(particles * steps * state.iterations(), benchmark::Counter::kIsRate);
-  state.counters["bytes_per_particle"] = bytes / particles;
-  hvi::bench::add_phase_counters(state, phases);
+  hvi::bench::report(state, measured, steps);
 }
 
 const bool registered = [] {

@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "bench/phase_counters.hpp"
+#include "bench/counters.hpp"
 
 #include "bench/block_setup.hpp"
 
@@ -20,25 +20,17 @@ void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
   settings.dilatation = dilatation;
   if (contact) settings.contact = hvi::mpm::ContactSettings{};
   const int steps = 100;
-  double particles = 0, bytes = 0;
-  hvi::mpm::PhaseTimer phases;
+  hvi::bench::Measured measured;
   for (auto _ : state) {
     state.PauseTiming();
     auto solver = hvi::bench::elastic_block(50, 2, settings);
     state.ResumeTiming();
     for (int s = 0; s < steps; ++s) solver->step();
     state.PauseTiming();
-    particles = static_cast<double>(solver->particles().size());
-    bytes = static_cast<double>(solver->bytes());
-    phases = solver->timer();
+    measured.take(*solver);
     state.ResumeTiming();
   }
-  state.counters["particles"] = particles;
-  state.counters["threads"] = threads;
-  state.counters["particle_steps_per_s"] =
-      benchmark::Counter(particles * steps * state.iterations(), benchmark::Counter::kIsRate);
-  state.counters["bytes_per_particle"] = bytes / particles;
-  hvi::bench::add_phase_counters(state, phases);
+  hvi::bench::report(state, measured, steps);
 }
 
 // The reference workload: linear shape functions.

@@ -9,9 +9,8 @@ namespace hvi::mpm {
 
 std::size_t ParticleBins::bytes() const {
   std::size_t b =
-      key.capacity() * sizeof(std::uint64_t) + order.capacity() * sizeof(std::uint32_t) +
-      offset.capacity() * sizeof(std::uint32_t) + owner.capacity() * sizeof(std::uint32_t) +
-      neighbours.capacity() * sizeof(neighbours[0]) +
+      owner.capacity() * sizeof(std::uint64_t) + order.capacity() * sizeof(std::uint32_t) +
+      offset.capacity() * sizeof(std::uint32_t) + neighbours.capacity() * sizeof(neighbours[0]) +
       (group_owner.capacity() + group_offset.capacity()) * sizeof(std::uint32_t);
   for (const auto& c : colour) b += c.capacity() * sizeof(std::uint32_t);
   return b;
@@ -44,15 +43,16 @@ struct Chunk {
         end(n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads)) {}
 };
 
-constexpr std::uint32_t unbinned = SparseGrid::none;
+constexpr std::uint64_t unbinned = SparseGrid::none;
 
 // Each binned particle's owner block, numbered in order of first appearance in the particle
-// arrays: every thread lists where runs of one key start in its chunk, in parallel; the runs are
-// numbered in order, serially (particles are stored mostly in block order, so there are few); the
-// owners are then filled in, in parallel. The same numbering as one serial pass.
-void number_owner_blocks(const ParticleBins& bins, SparseGrid& grid, const std::uint8_t* field,
-                         std::uint8_t which, std::vector<std::uint32_t>& owner) {
-  const std::size_t n = bins.key.size();
+// arrays, in place of its key: every thread lists where runs of one key start in its chunk, in
+// parallel; the runs are numbered in order, serially (particles are stored mostly in block order,
+// so there are few); the owners are then filled in, in parallel. The same numbering as one serial
+// pass.
+void number_owner_blocks(std::vector<std::uint64_t>& owner, SparseGrid& grid,
+                         const std::uint8_t* field, std::uint8_t which) {
+  const std::size_t n = owner.size();
   const int threads = omp_get_max_threads();
   std::vector<std::vector<std::size_t>> starts(static_cast<std::size_t>(threads));
   std::vector<std::vector<std::uint32_t>> blocks(static_cast<std::size_t>(threads));
@@ -64,14 +64,13 @@ void number_owner_blocks(const ParticleBins& bins, SparseGrid& grid, const std::
     std::uint64_t last = ~std::uint64_t{0};
     for (std::size_t p = c.begin; p < c.end; ++p) {
       if (field && field[p] != which) continue;
-      if (bins.key[p] != last) s.push_back(p);
-      last = bins.key[p];
+      if (owner[p] != last) s.push_back(p);
+      last = owner[p];
     }
   }
   for (int t = 0; t < threads; ++t)
     for (const std::size_t p : starts[static_cast<std::size_t>(t)])
-      blocks[static_cast<std::size_t>(t)].push_back(grid.activate(bins.key[p]));
-  owner.resize(n);
+      blocks[static_cast<std::size_t>(t)].push_back(grid.activate(owner[p]));
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
@@ -160,14 +159,15 @@ void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid
                    ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys,
                    const std::uint8_t* field, std::uint8_t which) {
   const std::size_t n = particles.size();
-  bins.key.resize(n);
+  bins.owner.resize(n);
   if (stencil.shape == ShapeFunction::linear)
-    owner_keys<LinearShape>(particles, grid.geometry(), nullptr, bins.key);
+    owner_keys<LinearShape>(particles, grid.geometry(), nullptr, bins.owner);
   else
-    owner_keys<GimpShape>(particles, grid.geometry(), stencil.half_width, bins.key);  // uGIMP, cpGIMP
+    owner_keys<GimpShape>(particles, grid.geometry(), stencil.half_width,
+                          bins.owner);  // uGIMP, cpGIMP
 
   grid.clear();
-  number_owner_blocks(bins, grid, field, which, bins.owner);
+  number_owner_blocks(bins.owner, grid, field, which);
   const auto owners = static_cast<std::uint32_t>(grid.block_count());
   sort_by_owner(bins, owners);
 

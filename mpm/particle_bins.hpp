@@ -20,9 +20,9 @@
 namespace hvi::mpm {
 
 struct ParticleBins {
-  std::vector<std::uint64_t> key;    // per particle: key of its owner block
-  std::vector<std::uint32_t>
-      owner;  // per particle: its owner block, or SparseGrid::none if not binned
+  // Per particle: while binning, the key of its owner block; then the owner block's index, or
+  // SparseGrid::none for a particle not binned here.
+  std::vector<std::uint64_t> owner;
   std::vector<std::uint32_t> order;  // particle indices grouped by owner block, stable
   std::vector<std::uint32_t> offset; // owner block b holds order[offset[b], offset[b+1])
   // Owner block b's blocks at b + (dx, dy, dz), dx, dy, dz in {0, 1}, index dx | dy<<1 | dz<<2.

@@ -1,0 +1,46 @@
+#pragma once
+// The counters every MPM benchmark reports: particle_steps_per_s (particles x steps / wall
+// time), bytes_per_particle (all particle arrays, grid and bins over the particle count), the
+// threads, and the seconds of each phase of the step (mpm/phase_timer.hpp) of one iteration's
+// solver, as s_<phase> ("move particles" becomes s_move_particles).
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "mpm/phase_timer.hpp"
+#include "mpm/solver.hpp"
+
+namespace hvi::bench {
+
+inline std::string counter_name(const std::string& phase) {
+  std::string s = "s_";
+  for (const char c : phase)
+    if (c == ' ' || c == ':' || c == '+') {
+      if (s.back() != '_') s += '_';
+    } else {
+      s += c;
+    }
+  return s;
+}
+
+// What an iteration's solver leaves for the counters, taken after its timed steps.
+struct Measured {
+  double particles = 0.0, bytes = 0.0;
+  mpm::PhaseTimer phases;
+  void take(mpm::Solver& solver) {
+    particles = static_cast<double>(solver.particles().size());
+    bytes = static_cast<double>(solver.bytes());
+    phases = solver.timer();
+  }
+};
+
+inline void report(benchmark::State& state, const Measured& m, int steps) {
+  state.counters["particles"] = m.particles;
+  state.counters["threads"] = static_cast<double>(state.range(0));
+  state.counters["particle_steps_per_s"] = benchmark::Counter(
+      m.particles * steps * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["bytes_per_particle"] = m.bytes / m.particles;
+  for (const auto& e : m.phases.entries()) state.counters[counter_name(e.name)] = e.seconds;
+}
+
+}  // namespace hvi::bench
