@@ -46,14 +46,15 @@ struct GimpStencil {
 };
 static_assert(sizeof(GimpStencil) == 152);  // 18 doubles and 7 bytes, padded to a double
 
-// The GIMP stencils of every point, kept between the passes of one step. A step's passes see the
-// same positions, half-widths and bins from the binning to the domains' stretch, yet without the
-// cache each pass evaluated all 9 weights again: with MUSL and the node average, 5 times a step.
-// Stored, they cost sizeof(GimpStencil) = 152 bytes a point (README, Benchmarks, for what that
-// bought). The solver invalidates the cache whenever the points are binned again or their domains
-// stretch; the first transfer after that which visits every binned point fills it as it
-// evaluates, and the ones after read it. The values are the ones each pass would compute, so
-// results are the same to the bit (tests/mpm/test_transfers.cpp, tests/driver/test_cli.cpp).
+// The GIMP stencils of every point, kept between the passes of one step (grid.stencil_cache,
+// off by default). A step's passes see the same positions, half-widths and bins from the binning
+// to the domains' stretch, so without the cache each pass evaluates the weights again: with MUSL
+// and the node average, 5 times a step. Stored, they cost sizeof(GimpStencil) = 152 bytes a point,
+// and streaming them costs more than evaluating them (docs/verification/benchmarks.md). The solver
+// invalidates the cache whenever the points are binned again or their domains stretch; the first
+// transfer after that which visits every binned point fills it as it evaluates, and the ones after
+// read it. The values are the ones each pass would compute, so results are the same to the bit
+// (tests/mpm/test_transfers.cpp, tests/driver/test_cli.cpp).
 class StencilCache {
  public:
   void invalidate() { valid_ = false; }
