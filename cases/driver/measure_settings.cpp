@@ -12,7 +12,7 @@ TableSpec measure_table() {
               .array = true};
   t.string_required("name", "Name of the quantity in the outputs")
       .choice_required("kind", {"extent_max", "extent_min", "diameter", "field_max", "field_min", "energy_error", "peak_pressure", "holes", "displacement"},
-                       "What to measure (see the README's Measures section)")
+                       "What to measure (see docs/user/studies.md, Measures)")
       .choice("axis", {"x", "y", "z"}, "z", "Axis of an extent, or of the line a diameter is measured around")
       .string("body", "", "Restrict a geometric measure to this body (default: all)")
       .string("field", "", "Particle field of field_max / field_min")

@@ -48,7 +48,7 @@ TableSpec grid_table() {
       .choice("shape_function", {"cpgimp", "gimp", "linear"}, "cpgimp",
               "Grid shape functions: cpgimp (GIMP whose particle domains stretch with the flow), gimp "
               "(uGIMP, fixed domains) or linear (standard MPM, the paper's; loses shock pressure to "
-              "cell-crossing noise, see README)")
+              "cell-crossing noise, see docs/user/materials.md)")
       .choice("scheme", {"musl", "usl", "usf"}, "musl",
               "Update scheme: musl, usl, or usf (update stress first, the paper's flowchart)")
       .number("flip", closed(0, 1), 1.0,
@@ -57,7 +57,7 @@ TableSpec grid_table() {
               "Volume change a point follows: particle (its own, standard MPM, the paper's) or "
               "node-average (averaged through the grid nodes over the intact points of its body, "
               "with the mean stress averaged alike in the force: lifts the volumetric locking of walls "
-              "a few cells thick; see README)")
+              "a few cells thick; see docs/theory/mpm.md)")
       .boolean("stencil_cache", false,
                "Keep each point's GIMP weights from the first transfer of a step to the last: the same "
                "results to the bit, 152 bytes a point; false: every transfer evaluates its own, which "
@@ -283,7 +283,7 @@ TableSpec far_field_table() {
                          "trilinear facesheets stiffen in bending as (length / thickness)^2)")
       .integer("core_elements", closed(1, 64), 8,
                "Elements through the core height (4 deflected 17% less than pure MPM 20 mm from "
-               "an impact, 8 deflected 11% less; README)")
+               "an impact, 8 deflected 11% less; docs/verification/pure_vs_hybrid.md)")
       .integer("face_elements", closed(1, 8), 1, "Elements through each facesheet")
       .choice("plasticity", {"none", "j2", "failing"}, "none",
               "The far field's facesheets: elastic; J2 plasticity hardening as their materials' "

@@ -51,7 +51,7 @@ struct Key {
   // "optional, no default": the driver computes and records the value (e.g. depends on other keys).
   std::shared_ptr<const toml::node> default_value;  // null: no default
   bool required = false;
-  std::string doc;  // one line for `hvi keys` and the README
+  std::string doc;  // one line for `hvi keys` and docs/user/scene_keys.md
 };
 
 struct TableSpec {
@@ -129,7 +129,7 @@ void apply_override(toml::table& document, const std::string& assignment);
 // The same with the diagnostics' source named `source` (e.g. "scene.toml [resolutions.coarse]").
 void apply_override(toml::table& document, const std::string& assignment, const std::string& source);
 
-// Markdown reference of every key (for `hvi keys` and the README).
+// Markdown reference of every key (for `hvi keys` and docs/user/scene_keys.md).
 std::string markdown_reference(const TableSpec& root);
 
 }  // namespace hvi::scene

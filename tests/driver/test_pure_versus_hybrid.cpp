@@ -4,8 +4,7 @@
 // elements beyond), at 200 m/s instead of 2.2 or 4.5 km/s: it punches a 10.2 mm plug out of the
 // front sheet and stops in the core (rear sheet NP, bulging 0.17 mm), so nothing fails near the
 // probe (the far field's plastic strain stays below 0.2%) and what is compared is the far field
-// alone; at 2.2 km/s the rear sheet tears to within 8 mm of the probe (README, "Pure MPM versus
-// hybrid").
+// alone; at 2.2 km/s the rear sheet tears to within 8 mm of the probe (docs/verification/pure_vs_hybrid.md).
 //
 // The plug's hole D_f agrees within the issue's 5% (measured -0.7%), both rear sheets hold, and
 // the rear facesheet's deflection 20 mm from the axis, along x and along y, agrees within the

@@ -250,7 +250,7 @@ TEST(HoneycombCore, InsideTestAgreesWithTheSurface) {
   EXPECT_GT(inside, 1000);
 }
 
-// Quarter models of Turner's shots (README, "A quarter model halves a shot's cost") rest on this:
+// Quarter models of Turner's shots (docs/verification/paper_cases.md, "A quarter model halves a shot's cost") rest on this:
 // with a cell centre on the impact axis and the pattern turned by a multiple of 30 degrees, the
 // planes x = 0 and y = 0 are mirror planes of the core, so a quarter of the panel holds exactly a
 // quarter of its walls. A turn of 15 degrees breaks the x = 0 mirror (the negative control).
