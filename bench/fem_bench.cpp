@@ -37,8 +37,8 @@ hvi::fem::LayeredMesh study_panel_quarter(int degree, int facesheets, bool finit
   const Orthotropic face = isotropic(face_metal.youngs_modulus, face_metal.poisson_ratio);
   const Orthotropic core = honeycomb_core(wall_metal.youngs_modulus, wall_metal.poisson_ratio, 3e-3, 0.05e-3);
   const double rho_core = wall_metal.density * honeycomb_core_solidity(3e-3, 0.05e-3);
-  std::optional<hvi::mpm::JohnsonCookStrength> j2;
-  std::optional<hvi::mpm::JohnsonCookDamage> tear;
+  std::optional<hvi::materials::JohnsonCookStrength> j2;
+  std::optional<hvi::materials::JohnsonCookDamage> tear;
   if (facesheets >= 1) j2 = face_metal.johnson_cook;
   if (facesheets == 2) tear = face_metal.damage;
   std::optional<CoreYield> caps;

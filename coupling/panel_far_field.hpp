@@ -21,10 +21,10 @@ struct SolidMaterial {
   double youngs_modulus = 0, poisson_ratio = 0, density = 0;
   // J2 plasticity (facesheets), or for the core's walls the yield stress of a yielding core (its
   // A); none: elastic.
-  std::optional<mpm::JohnsonCookStrength> hardening;
+  std::optional<materials::JohnsonCookStrength> hardening;
   // For failing facesheets (with `hardening`; fem::FarField refuses them without) or a failing
   // core's walls: their Johnson-Cook damage (eqs. 2-3); none otherwise.
-  std::optional<mpm::JohnsonCookDamage> damage;
+  std::optional<materials::JohnsonCookDamage> damage;
 };
 
 struct PanelFarFieldSpec {

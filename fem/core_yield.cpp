@@ -12,7 +12,7 @@ CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modul
           core.G23 / shear_modulus * shear_yield, std::nullopt};
 }
 
-CoreFailure honeycomb_core_failure(const mpm::JohnsonCookDamage& walls) {
+CoreFailure honeycomb_core_failure(const materials::JohnsonCookDamage& walls) {
   // Reference rate (factor 1) and room temperature (T* = 0).
   return {walls.failure_strain(1.0 / 3.0, 0.0, 0.0), walls.failure_strain(-1.0 / 3.0, 0.0, 0.0),
           walls.failure_strain(0.0, 0.0, 0.0)};

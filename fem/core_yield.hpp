@@ -40,7 +40,7 @@
 
 #include "fem/j2_plasticity.hpp"
 #include "fem/orthotropic.hpp"
-#include "mpm/materials/johnson_cook_damage.hpp"
+#include "materials/johnson_cook_damage.hpp"
 
 namespace hvi::fem {
 
@@ -51,7 +51,7 @@ struct CoreFailure {
   double shear = 0;        // 0
 };
 
-CoreFailure honeycomb_core_failure(const mpm::JohnsonCookDamage& walls);
+CoreFailure honeycomb_core_failure(const materials::JohnsonCookDamage& walls);
 
 struct CoreYield {
   double normal = 0;    // Y3, Pa: |sigma_zz| at yield

@@ -33,8 +33,8 @@
 
 #include "fem/core_yield.hpp"
 #include "fem/orthotropic.hpp"
-#include "mpm/materials/johnson_cook.hpp"
-#include "mpm/materials/johnson_cook_damage.hpp"
+#include "materials/johnson_cook.hpp"
+#include "materials/johnson_cook_damage.hpp"
 
 namespace hvi::fem {
 
@@ -47,13 +47,13 @@ struct Layer {
   double density = 0;  // kg/m^3
   // J2 plasticity with this hardening curve (its A, B, n, and C with `strain_rate`; thermal factor 1), for an
   // isotropic layer only; none: the layer stays elastic and keeps no plastic state.
-  std::optional<mpm::JohnsonCookStrength> plasticity;
+  std::optional<materials::JohnsonCookStrength> plasticity;
   // A honeycomb core's out-of-plane normal and transverse shear stresses capped where its walls
   // yield (fem/core_yield.hpp); none: elastic. A layer takes this or `plasticity`, not both.
   std::optional<CoreYield> core_yield;
   // With `plasticity`: the layer tears where this Johnson-Cook damage reaches 1 (fem/j2_plasticity.hpp);
   // none: it yields without limit.
-  std::optional<mpm::JohnsonCookDamage> failure;
+  std::optional<materials::JohnsonCookDamage> failure;
   // With `plasticity`: the yield stress takes eq. (1)'s rate factor at each quadrature point's
   // equivalent deviatoric strain rate, the change of its strain since the last force evaluation
   // over the step (fem/j2_plasticity.hpp; six more values of state per point); false: the

@@ -6,13 +6,13 @@
 // temperature (the paper's eq. 1 with its thermal factor 1):
 //   sigma_y(alpha) = (A + B alpha^n) k,   k = 1 + C ln(max(epsdot / epsdot_0, 1)),
 // with the rate factor k frozen over the step as the material points freeze it
-// (mpm/materials/johnson_cook.hpp). k = 1 (the reference rate) unless the far field is asked for
+// (materials/johnson_cook.hpp). k = 1 (the reference rate) unless the far field is asked for
 // the rate (far_field.strain_rate = "johnson-cook"): the far field is the panel away from the
 // impact, where heating is small, but a panel ringing over tens of microseconds strains its
 // sheets at 1e2-1e4 /s, where k is 1.07-1.14 for the paper's C = 0.015.
 //
 // Backward-Euler radial return (the closest point on the von Mises cylinder), with the safeguarded
-// Newton solve of mpm/materials/johnson_cook.hpp:
+// Newton solve of materials/johnson_cook.hpp:
 //   sigma_trial = C (eps - eps_p,n),  s_trial = dev sigma_trial,  q_trial = sqrt(3/2 s:s)
 //   q_trial - 3 mu dgamma = sigma_y(alpha_n + dgamma) k          (dgamma = 0 inside the surface)
 //   eps_p,n+1 = eps_p,n + 3/2 dgamma s_trial / q_trial,  alpha_n+1 = alpha_n + dgamma
@@ -37,8 +37,8 @@
 // never held energy. A torn point's alpha stays what it had taken at the tear.
 #include <array>
 
-#include "mpm/materials/johnson_cook.hpp"
-#include "mpm/materials/johnson_cook_damage.hpp"
+#include "materials/johnson_cook.hpp"
+#include "materials/johnson_cook_damage.hpp"
 
 namespace hvi::fem {
 
@@ -66,13 +66,13 @@ struct StrainRate {
 };
 
 // `trial_stress`: C (eps - eps_p,n) of the isotropic material with shear modulus mu.
-J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, const mpm::JohnsonCookStrength& hardening,
+J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, const materials::JohnsonCookStrength& hardening,
                    const StrainRate& rate = {});
 
 // The same for failing facesheets, with bulk modulus K and Johnson-Cook damage `damage`.
 J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, double K,
-                   const mpm::JohnsonCookStrength& hardening, const mpm::JohnsonCookDamage& damage,
-                   const StrainRate& rate = {});
+                   const materials::JohnsonCookStrength& hardening,
+                   const materials::JohnsonCookDamage& damage, const StrainRate& rate = {});
 
 // The equivalent deviatoric strain rate of a strain increment `de` (Voigt, tensor shears) over dt
 // (> 0): sqrt(2/3 de':de') / dt.

@@ -4,17 +4,19 @@
 #include <cmath>
 #include <cstdint>
 
+#include "materials/tensor.hpp"
+
 namespace hvi::mpm {
 
 using Vec3 = std::array<double, 3>;
 // A 3x3 tensor, row-major: T[3*i + j] = T_ij.
 using Mat3 = std::array<double, 9>;
-// A symmetric 3x3 tensor in the XDMF "Tensor6" order: xx, xy, xz, yy, yz, zz.
+// A symmetric 3x3 tensor in the XDMF "Tensor6" order: xx, xy, xz, yy, yz, zz
+// (materials/tensor.hpp, with trace_sym).
 using Sym6 = std::array<double, 6>;
 
-namespace sym {
-inline constexpr int xx = 0, xy = 1, xz = 2, yy = 3, yz = 4, zz = 5;
-}
+namespace sym = materials::sym;
+using materials::trace_sym;
 
 inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
@@ -30,8 +32,6 @@ inline double contract_sym(const double* s, const double* d) {
   return s[sym::xx] * d[sym::xx] + s[sym::yy] * d[sym::yy] + s[sym::zz] * d[sym::zz] +
          2.0 * (s[sym::xy] * d[sym::xy] + s[sym::xz] * d[sym::xz] + s[sym::yz] * d[sym::yz]);
 }
-
-inline double trace_sym(const double* s) { return s[sym::xx] + s[sym::yy] + s[sym::zz]; }
 
 // Von Mises equivalent stress sqrt(3/2 s:s) of a symmetric stress.
 inline double von_mises(const double* s) {

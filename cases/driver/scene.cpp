@@ -189,7 +189,7 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     if (auto* jt = model_table("johnson_cook", m.strength == "johnson-cook", "strength", "johnson-cook")) {
       ParameterSource p(*jt, path + ".johnson_cook", m.library, c);
       const auto& lj = L ? L->johnson_cook : std::nullopt;
-      mpm::JohnsonCookStrength jc;
+      materials::JohnsonCookStrength jc;
       jc.A = p.get("A", from(lj, [](auto& x) { return x.A; }));
       jc.B = p.get("B", from(lj, [](auto& x) { return x.B; }));
       jc.n = p.get("n", from(lj, [](auto& x) { return x.n; }));
@@ -205,7 +205,7 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     if (auto* mt = model_table("mie_gruneisen", m.eos == "mie-gruneisen", "eos", "mie-gruneisen")) {
       ParameterSource p(*mt, path + ".mie_gruneisen", m.library, c);
       const auto& lm = L ? L->mie_gruneisen : std::nullopt;
-      mpm::MieGruneisen mg;
+      materials::MieGruneisen mg;
       mg.reference_density = h.density;
       mg.c0 = p.get("c0", from(lm, [](auto& x) { return x.c0; }));
       mg.s = p.get("s", from(lm, [](auto& x) { return x.s; }));
@@ -222,7 +222,7 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     if (auto* dt = model_table("johnson_cook_damage", m.damage == "johnson-cook", "damage", "johnson-cook")) {
       ParameterSource p(*dt, path + ".johnson_cook_damage", m.library, c);
       const auto& ld = L ? L->damage : std::nullopt;
-      mpm::JohnsonCookDamage d;
+      materials::JohnsonCookDamage d;
       d.D1 = p.get("D1", from(ld, [](auto& x) { return x.D1; }));
       d.D2 = p.get("D2", from(ld, [](auto& x) { return x.D2; }));
       d.D3 = p.get("D3", from(ld, [](auto& x) { return x.D3; }));
@@ -239,7 +239,7 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     }
     if (auto* tt = model_table("tuler_butcher", m.failure == "tuler-butcher", "failure", "tuler-butcher")) {
       ParameterSource p(*tt, path + ".tuler_butcher", m.library, c);
-      mpm::TulerButcher tb;
+      materials::TulerButcher tb;
       tb.threshold = p.get("threshold", L ? L->max_principal_stress : std::nullopt);
       tb.exponent = (*tt)["exponent"].value<double>().value();
       tb.time = p.get("time", std::nullopt);

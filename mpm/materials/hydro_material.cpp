@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "mpm/materials/principal_stress.hpp"
+#include "materials/principal_stress.hpp"
 #include "mpm/phase_timer.hpp"
 #include "mpm/types.hpp"
 
@@ -234,8 +234,8 @@ void HydroMaterial::update_deviatoric(Particles& P, std::int64_t p, const State&
       const double q_trial = von_mises(s_new);
       const double rate = std::sqrt(2.0 / 3.0 * contract_sym(D, D));
       const double temp = st.T ? st.T[p] : models_.initial_temperature;
-      const double d_eps = radial_return(*jc, q_trial, G, st.eps[p], jc->rate_factor(rate),
-                                         jc->thermal_factor(temp));
+      const double d_eps = materials::radial_return(
+          *jc, q_trial, G, st.eps[p], jc->rate_factor(rate), jc->thermal_factor(temp));
       if (d_eps > 0.0) {
         const double q = q_trial - 3.0 * G * d_eps;  // the yield stress reached
         const double scale = q / q_trial;
@@ -326,7 +326,7 @@ void HydroMaterial::accumulate_damage(Particles& P, std::int64_t p, const State&
 void HydroMaterial::check_principal_stress(Particles& P, std::int64_t p, const State& st) const {
   const double limit = *models_.max_principal_stress;
   fail_if(p, st.fl, st.pe, &P.stress[6 * p],
-          [&](const double* sigma) { return principal_reaches(sigma, limit); });
+          [&](const double* sigma) { return materials::principal_reaches(sigma, limit); });
 }
 
 // Time-dependent spall: D_s += dt max(sigma_1 / sigma_0 - 1, 0)^lambda / tau; failure at D_s = 1.
@@ -335,8 +335,8 @@ void HydroMaterial::accumulate_spall(Particles& P, std::int64_t p, const State& 
   const TulerButcher& tb = *models_.tuler_butcher;
   fail_if(p, st.fl, st.pe, &P.stress[6 * p], [&](const double* sigma) {
     // Below the threshold the rate is 0 and D_s stays as it is.
-    if (principal_reaches(sigma, tb.threshold))
-      st.Ds[p] = std::min(st.Ds[p] + dt * tb.damage_rate(max_principal(sigma)), 1.0);
+    if (materials::principal_reaches(sigma, tb.threshold))
+      st.Ds[p] = std::min(st.Ds[p] + dt * tb.damage_rate(materials::max_principal(sigma)), 1.0);
     return st.Ds[p] >= 1.0;
   });
 }

@@ -18,13 +18,19 @@
 // material's points, each model in turn on each point, timed as one phase named after the models.
 #include <optional>
 
+#include "materials/johnson_cook.hpp"
+#include "materials/johnson_cook_damage.hpp"
+#include "materials/mie_gruneisen.hpp"
+#include "materials/tuler_butcher.hpp"
 #include "mpm/material.hpp"
-#include "mpm/materials/johnson_cook.hpp"
-#include "mpm/materials/johnson_cook_damage.hpp"
-#include "mpm/materials/mie_gruneisen.hpp"
-#include "mpm/materials/tuler_butcher.hpp"
 
 namespace hvi::mpm {
+
+// The laws the models below are made of (materials/).
+using materials::JohnsonCookDamage;
+using materials::JohnsonCookStrength;
+using materials::MieGruneisen;
+using materials::TulerButcher;
 
 struct AdiabaticHeating {
   double specific_heat = 0;      // c_v, J/(kg K)

@@ -16,8 +16,8 @@ namespace hvi::fem::test {
 inline constexpr double E = 69e9, nu = 0.33, rho = 2700, L = 1e-3;
 inline const double mu = E / (2 * (1 + nu)), lame = E * nu / ((1 + nu) * (1 - 2 * nu));
 
-inline mpm::JohnsonCookStrength al6061() {
-  mpm::JohnsonCookStrength jc;
+inline materials::JohnsonCookStrength al6061() {
+  materials::JohnsonCookStrength jc;
   jc.A = 324e6;
   jc.B = 114e6;
   jc.n = 0.42;
@@ -25,8 +25,8 @@ inline mpm::JohnsonCookStrength al6061() {
 }
 
 // Table 4's Al6061 damage, its rate and thermal terms left out (the far field's are 1).
-inline mpm::JohnsonCookDamage al6061_damage() {
-  mpm::JohnsonCookDamage d;
+inline materials::JohnsonCookDamage al6061_damage() {
+  materials::JohnsonCookDamage d;
   d.D1 = -0.77;
   d.D2 = 1.45;
   d.D3 = -0.47;
@@ -83,7 +83,7 @@ inline std::array<double, 3> face_force(const std::vector<double>& force, const 
 // With a rate factor k (eq. 1's 1 + C ln epsdot*) the yield stress is k (A + B alpha^n).
 struct Uniaxial {
   double mu, K;
-  mpm::JohnsonCookStrength jc;
+  materials::JohnsonCookStrength jc;
   double k = 1.0;
   double alpha_on_loading(double e) const {
     if (2 * mu * e <= k * jc.A) return 0.0;

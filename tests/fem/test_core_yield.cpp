@@ -40,8 +40,8 @@ TEST(CoreYield, CapsAreTheWallsYieldThroughTheModuli) {
 }
 
 // Table 4's Al5052 damage: D1 = D2 = 0.13, D3 = -1.50.
-mpm::JohnsonCookDamage al5052_damage() {
-  mpm::JohnsonCookDamage d;
+materials::JohnsonCookDamage al5052_damage() {
+  materials::JohnsonCookDamage d;
   d.D1 = 0.13, d.D2 = 0.13, d.D3 = -1.50, d.D4 = 0.011;
   return d;
 }

@@ -307,7 +307,7 @@ TEST(FarField, ThreadCountDoesNotChangeABit) {
     omp_set_num_threads(threads);
     LayeredMesh m = sandwich_mesh(0.1, 1e-3, 10e-3, 3e-3, 0.05e-3, 6, 1);
     if (plastic) {
-      mpm::JohnsonCookStrength jc;
+      materials::JohnsonCookStrength jc;
       jc.A = 324e6;
       jc.B = 114e6;
       jc.n = 0.42;

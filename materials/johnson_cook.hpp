@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace hvi::mpm {
+namespace hvi::materials {
 
 struct JohnsonCookStrength {
   double A = 0, B = 0, n = 1, C = 0, m = 1;  // Pa, Pa, -, -, -
@@ -71,4 +71,4 @@ inline double radial_return(const JohnsonCookStrength& jc, double q_trial, doubl
   return d;
 }
 
-}  // namespace hvi::mpm
+}  // namespace hvi::materials

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace hvi::mpm {
+namespace hvi::materials {
 
 struct JohnsonCookDamage {
   double D1 = 0, D2 = 0, D3 = 0, D4 = 0, D5 = 0;
@@ -25,4 +25,4 @@ struct JohnsonCookDamage {
   }
 };
 
-}  // namespace hvi::mpm
+}  // namespace hvi::materials

@@ -10,7 +10,7 @@
 // at sigma_0; a literature K converts as tau = K / sigma_0^lambda.
 #include <cmath>
 
-namespace hvi::mpm {
+namespace hvi::materials {
 
 struct TulerButcher {
   double threshold = 0;  // sigma_0, Pa
@@ -24,4 +24,4 @@ struct TulerButcher {
   }
 };
 
-}  // namespace hvi::mpm
+}  // namespace hvi::materials

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "mpm/types.hpp"
+#include "materials/tensor.hpp"
 
-namespace hvi::mpm {
+namespace hvi::materials {
 
 inline double max_principal(const double* s) {
   const double p1 = s[sym::xy] * s[sym::xy] + s[sym::xz] * s[sym::xz] + s[sym::yz] * s[sym::yz];
@@ -36,4 +36,4 @@ inline bool principal_reaches(const double* s, double limit) {
   return max_principal(s) >= limit;
 }
 
-}  // namespace hvi::mpm
+}  // namespace hvi::materials

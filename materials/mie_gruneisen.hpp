@@ -19,7 +19,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace hvi::mpm {
+namespace hvi::materials {
 
 struct MieGruneisen {
   double reference_density = 0;  // rho0, kg/m^3
@@ -88,4 +88,4 @@ struct MieGruneisen {
   double bulk_sound_speed_squared(double rho, double p) const { return bulk_sound_speed_squared(at(rho), p); }
 };
 
-}  // namespace hvi::mpm
+}  // namespace hvi::materials

@@ -1,6 +1,6 @@
-// Johnson-Cook strength (paper eq. 1): the yield stress against its closed form, the clamps of the
-// rate and temperature terms, radial return onto the yield surface, and the stress path of
-// uniaxial-strain compression against its closed form.
+// The laws inside HydroMaterial, driven through a material point: the stress path of
+// uniaxial-strain compression with Johnson-Cook strength (paper eq. 1) against its closed form,
+// and the Mie-Grüneisen EOS (paper eqs. 4-5) solved together with the energy equation.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -12,47 +12,6 @@
 
 namespace hvi::mpm {
 namespace {
-
-JohnsonCookStrength paper_al() { return *find_library_material("Al6061")->parameters.johnson_cook; }
-
-TEST(JohnsonCook, YieldStressEqualsClosedForm) {
-  const JohnsonCookStrength jc = paper_al();
-  // eps_p = 0.1, rate 1000/s, T = 400 K, by hand from Table 4:
-  // (265 + 426 * 0.1^0.34) * (1 + 0.015 ln 1000) * (1 - (400 - 293) / (775 - 293)) MPa
-  const double expected = (265e6 + 426e6 * std::pow(0.1, 0.34)) * (1 + 0.015 * std::log(1000.0)) *
-                          (1 - (400.0 - 293.0) / (775.0 - 293.0));
-  // Same operations in a different order: agreement to a few ulps.
-  EXPECT_NEAR(jc.yield_stress(0.1, 1000.0, 400.0), expected, 1e-13 * expected);
-  EXPECT_NEAR(expected, 3.9473e8, 1e4);  // the value computed by hand (calculator), 5 digits
-}
-
-TEST(JohnsonCook, RateAndTemperatureTermsAreClamped) {
-  const JohnsonCookStrength jc = paper_al();
-  const double A = 265e6;
-  EXPECT_DOUBLE_EQ(jc.yield_stress(0.0, 1e-3, 293.0), A);   // rate below the reference: no softening
-  EXPECT_DOUBLE_EQ(jc.yield_stress(0.0, 1.0, 200.0), A);    // below room temperature: T* = 0
-  EXPECT_DOUBLE_EQ(jc.yield_stress(0.5, 1e4, 900.0), 0.0);  // above melt: T* = 1
-}
-
-// Stress state after return: von Mises equals the yield stress at the updated plastic strain.
-TEST(JohnsonCook, RadialReturnEndsOnTheYieldSurface) {
-  const JohnsonCookStrength jc = paper_al();
-  const double G = 75e9 / (2 * 1.33);
-  for (double q_trial : {300e6, 1e9, 5e9}) {
-    for (double eps_p : {0.0, 0.05, 1.0}) {
-      const double rate = jc.rate_factor(1e4), thermal = jc.thermal_factor(350.0);
-      const double d = radial_return(jc, q_trial, G, eps_p, rate, thermal);
-      const double q = q_trial - 3 * G * d;
-      if (q_trial <= jc.hardening(eps_p) * rate * thermal) {
-        EXPECT_EQ(d, 0.0);
-        continue;
-      }
-      // Newton converged to 1e-14 relative in d: the residual is round-off of q (1e-12 of q).
-      EXPECT_NEAR(q, jc.hardening(eps_p + d) * rate * thermal, 1e-10 * q) << q_trial << " " << eps_p;
-      EXPECT_GT(d, 0.0);
-    }
-  }
-}
 
 // Uniaxial strain at constant rate: L = diag(-rate, 0, 0). Elastic until the deviator reaches the
 // yield surface, then sigma_xx - sigma_yy = -sigma_y(eps_p) with, in this path,
@@ -95,6 +54,32 @@ TEST(JohnsonCook, UniaxialStrainPathMatchesClosedForm) {
   EXPECT_LT(worst, 1e-6);
   EXPECT_NEAR(point.field("plastic_strain"),
               2.0 / 3.0 * eps - std::fabs(point.stress()[sym::xx] - point.stress()[sym::yy]) / (3 * G), 1e-9);
+}
+
+// In the material the energy equation and the EOS are solved together:
+//   e1 = e0 - (p0 + p1)/2 dV/m,  p1 = p(rho1, e1).
+// Check the returned pressure and energy satisfy both to round-off after one compressive step.
+TEST(MieGruneisen, MaterialSolvesEnergyAndPressureTogether) {
+  HydroModels models = find_library_material("Al6061")->parameters;
+  models.johnson_cook.reset();
+  models.damage.reset();
+  models.shear_strength = false;  // hydrodynamic: only the EOS acts
+  const HydroMaterial material("al", models);
+  test::MaterialPoint point(material);
+  const double rate = 1e6, dt = 1e-8;
+  const double L[9] = {-rate, 0, 0, 0, -rate, 0, 0, 0, -rate};
+  double p_prev = 0.0;
+  for (int step = 0; step < 50; ++step) {
+    const double V0 = point.particles.volume[0], e0 = point.particles.internal_energy[0];
+    point.step(L, dt);
+    const double V1 = point.particles.volume[0], e1 = point.particles.internal_energy[0];
+    const double m = point.particles.mass[0];
+    const double p1 = -trace_sym(point.stress()) / 3.0;
+    EXPECT_NEAR(e1, e0 - 0.5 * (p_prev + p1) * (V1 - V0) / m, 1e-9 * std::fabs(e1) + 1e-12);
+    EXPECT_NEAR(p1, models.mie_gruneisen->pressure(m / V1, e1), 1e-10 * p1);
+    p_prev = p1;
+  }
+  EXPECT_GT(p_prev, 5e9);  // the path reached a few GPa
 }
 
 }  // namespace
