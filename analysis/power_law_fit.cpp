@@ -29,9 +29,8 @@ std::string combination(const Eigen::VectorXd& null, const std::vector<std::stri
   return s;
 }
 
-}  // namespace
-
-PowerLawFit fit_power_law(const PowerLawData& data, double alpha) {
+// Every response and group value must be positive and finite to enter a log-space fit.
+void check_data(const PowerLawData& data) {
   const std::size_t n = data.response.size();
   const std::size_t m = data.groups.size();
   if (data.group_names.size() != m) throw FitError("a name for every group is needed");
@@ -49,13 +48,12 @@ PowerLawFit fit_power_law(const PowerLawData& data, double alpha) {
         throw FitError(fmt::format("row {}: {} = {} is not positive and finite", i + 1,
                                    data.group_names[j], data.groups[j][i]));
   }
+}
 
-  PowerLawFit fit;
-  fit.rows = n;
-  fit.alpha = alpha;
-  fit.exponents.resize(m);
+// The groups that vary (the fit's columns); a group the same in every row is noted in `fit`.
+std::vector<std::size_t> varying_groups(const PowerLawData& data, PowerLawFit& fit) {
   std::vector<std::size_t> active;
-  for (std::size_t j = 0; j < m; ++j) {
+  for (std::size_t j = 0; j < data.groups.size(); ++j) {
     Exponent& e = fit.exponents[j];
     e.group = data.group_names[j];
     double lo = INFINITY, hi = -INFINITY;
@@ -73,41 +71,34 @@ PowerLawFit fit_power_law(const PowerLawData& data, double alpha) {
       active.push_back(j);
     }
   }
-  const std::size_t p = active.size() + 1;
-  if (n <= p)
-    throw FitError(
-        fmt::format("{} row{} for {} parameter{} (the constant and {} exponent{}): standard errors "
-                    "need at least {} rows",
-                    n, n == 1 ? "" : "s", p, p == 1 ? "" : "s", active.size(),
-                    active.size() == 1 ? "" : "s", p + 1));
+  return active;
+}
 
-  Eigen::MatrixXd X(n, p);
-  Eigen::VectorXd y(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    X(i, 0) = 1.0;
-    y[i] = std::log(data.response[i]);
-    for (std::size_t k = 0; k < active.size(); ++k)
-      X(i, k + 1) = std::log(data.groups[active[k]][i]);
+// Collinearity among the varying groups: singular values of the centred, unit-norm columns of
+// the design matrix X (its first column the constant's).
+void check_collinearity(const Eigen::MatrixXd& X, const PowerLawData& data, const std::vector<std::size_t>& active) {
+  if (active.empty()) return;
+  Eigen::MatrixXd Z = X.rightCols(X.cols() - 1);
+  Z.rowwise() -= Z.colwise().mean();
+  Z.array().rowwise() /= Z.colwise().norm().array();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Z, Eigen::ComputeFullV);
+  const Eigen::VectorXd sv = svd.singularValues();
+  if (sv[sv.size() - 1] < collinear_tolerance * sv[0]) {
+    std::vector<std::string> names;
+    for (const std::size_t j : active) names.push_back(data.group_names[j]);
+    throw FitError(fmt::format(
+        "the groups vary together in these data (collinear in log space: {} is the same in "
+        "every row), so their exponents cannot be told apart; add runs that vary them "
+        "independently",
+        combination(svd.matrixV().col(sv.size() - 1), names)));
   }
+}
 
-  // Collinearity among the varying groups: singular values of the centred, unit-norm columns.
-  if (!active.empty()) {
-    Eigen::MatrixXd Z = X.rightCols(p - 1);
-    Z.rowwise() -= Z.colwise().mean();
-    Z.array().rowwise() /= Z.colwise().norm().array();
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(Z, Eigen::ComputeFullV);
-    const Eigen::VectorXd sv = svd.singularValues();
-    if (sv[sv.size() - 1] < collinear_tolerance * sv[0]) {
-      std::vector<std::string> names;
-      for (const std::size_t j : active) names.push_back(data.group_names[j]);
-      throw FitError(fmt::format(
-          "the groups vary together in these data (collinear in log space: {} is the same in "
-          "every row), so their exponents cannot be told apart; add runs that vary them "
-          "independently",
-          combination(svd.matrixV().col(sv.size() - 1), names)));
-    }
-  }
-
+// Least squares ln y = X beta by QR, with the standard errors s^2 (X^T X)^-1, Student-t tests
+// and R^2 of the logarithm and of the variable itself.
+void solve(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const std::vector<std::size_t>& active,
+           double alpha, PowerLawFit& fit) {
+  const auto n = X.rows(), p = X.cols();
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(X);
   const Eigen::VectorXd beta = qr.solve(y);
   const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
@@ -142,6 +133,36 @@ PowerLawFit fit_power_law(const PowerLawData& data, double alpha) {
   const Eigen::ArrayXd v = y.array().exp(), v_hat = (X * beta).array().exp();
   const double sst = (v - v.mean()).square().sum();
   fit.r2 = sst > 0 ? 1 - (v - v_hat).square().sum() / sst : NAN;
+}
+
+}  // namespace
+
+PowerLawFit fit_power_law(const PowerLawData& data, double alpha) {
+  check_data(data);
+  const std::size_t n = data.response.size();
+  PowerLawFit fit;
+  fit.rows = n;
+  fit.alpha = alpha;
+  fit.exponents.resize(data.groups.size());
+  const std::vector<std::size_t> active = varying_groups(data, fit);
+  const std::size_t p = active.size() + 1;
+  if (n <= p)
+    throw FitError(
+        fmt::format("{} row{} for {} parameter{} (the constant and {} exponent{}): standard errors "
+                    "need at least {} rows",
+                    n, n == 1 ? "" : "s", p, p == 1 ? "" : "s", active.size(),
+                    active.size() == 1 ? "" : "s", p + 1));
+
+  Eigen::MatrixXd X(n, p);
+  Eigen::VectorXd y(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    X(i, 0) = 1.0;
+    y[i] = std::log(data.response[i]);
+    for (std::size_t k = 0; k < active.size(); ++k)
+      X(i, k + 1) = std::log(data.groups[active[k]][i]);
+  }
+  check_collinearity(X, data, active);
+  solve(X, y, active, alpha, fit);
   return fit;
 }
 

@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -101,79 +102,147 @@ int report(const std::string& dir, bool no_run_figures) {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ExitCode::success : ExitCode::input_error;
 }
 
+// What the command line asked for: each subcommand and the options it fills.
+struct Commands {
+  CLI::App *check = nullptr, *run = nullptr, *geometry = nullptr, *keys = nullptr, *convergence_cmd = nullptr,
+           *sweep_cmd = nullptr, *report = nullptr, *compare_cmd = nullptr;
+  std::string scene_path, out_dir, resume_dir;
+  std::vector<std::string> overrides;
+  int threads = 0;
+  bool overwrite = false;
+  hvi::driver::ConvergenceOptions convergence;
+  hvi::driver::SweepOptions sweep;
+  std::string report_dir;
+  bool report_no_run_figures = false;
+  hvi::driver::CompareOptions compare;
+  std::unique_ptr<hvi::driver::MeasureCli> measure;
+  std::unique_ptr<hvi::driver::FitCli> fit;
+};
+
+// check, run, geometry, keys: the commands of one scene.
+void add_scene_commands(CLI::App& app, Commands& c) {
+  c.check = app.add_subcommand("check", "Validate a scene and print what it will simulate");
+  c.check->add_option("scene", c.scene_path, "Scene file (TOML)")->required();
+  c.check->add_option("--set", c.overrides, "Override a scene key: key.path=value (repeatable)");
+
+  c.run = app.add_subcommand("run", "Run a scene");
+  auto* scene_opt = c.run->add_option("scene", c.scene_path, "Scene file (TOML)");
+  auto* out_opt = c.run->add_option("--out", c.out_dir, "Output directory");
+  auto* resume_opt = c.run->add_option("--resume", c.resume_dir, "Continue the run in this directory from its checkpoint");
+  c.run->add_option("--threads", c.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c.run->add_option("--set", c.overrides, "Override a scene key: key.path=value (repeatable)");
+  c.run->add_flag("--overwrite", c.overwrite, "Replace a previous run in the output directory");
+  scene_opt->excludes(resume_opt);
+  out_opt->excludes(resume_opt);
+
+  c.geometry = app.add_subcommand(
+      "geometry", "Build and sample the bodies; write each as STL and the points as HDF5/XDMF (ParaView)");
+  c.geometry->add_option("scene", c.scene_path, "Scene file (TOML)")->required();
+  c.geometry->add_option("--out", c.out_dir, "Output directory")->required();
+  c.geometry->add_option("--threads", c.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c.geometry->add_option("--set", c.overrides, "Override a scene key: key.path=value (repeatable)");
+
+  c.keys = app.add_subcommand("keys", "Print every scene key with its type, unit, range and default (Markdown)");
+}
+
+// convergence and sweep: the commands of many runs.
+void add_study_commands(CLI::App& app, Commands& c) {
+  hvi::driver::ConvergenceOptions& convergence = c.convergence;
+  c.convergence_cmd = app.add_subcommand(
+      "convergence", "Run a scene at a ladder of resolutions: each [[measure]] with its error, wall time and memory");
+  c.convergence_cmd->add_option("scene", convergence.scene, "Scene file (TOML)")->required();
+  c.convergence_cmd->add_option("--out", convergence.out, "Output directory (one run per level inside)")->required();
+  c.convergence_cmd->add_option("--levels", convergence.levels, "Number of cell sizes, from the scene's down")
+      ->check(CLI::Range(1, 8));
+  c.convergence_cmd->add_option("--ratio", convergence.ratio, "Cell size ratio from one level to the next (2: halving; 1.41421 puts a level between)")
+      ->check(CLI::Range(1.05, 4.0));
+  c.convergence_cmd->add_option("--ppc", convergence.particles_per_cell, "Particles per cell per axis to try at each level (e.g. 1 2 3)");
+  c.convergence_cmd->add_option("--reference", convergence.references, "A known value name=value to measure errors against");
+  c.convergence_cmd->add_option("--threads", convergence.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
+  c.convergence_cmd->add_option("--set", convergence.overrides, "Override a scene key: key.path=value (repeatable)");
+
+  hvi::driver::SweepOptions& sweep = c.sweep;
+  c.sweep_cmd = app.add_subcommand("sweep", "Run a study (a grid of scenes), resumably; one row per run in DIR/sweep.csv");
+  c.sweep_cmd->add_option("study", sweep.study, "Study file (TOML: scene, [[axis]] levels, [[run]]s)")->required();
+  c.sweep_cmd->add_option("--out", sweep.out, "Output directory (one run per directory inside)")->required();
+  c.sweep_cmd->add_option("--threads", sweep.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
+  c.sweep_cmd->add_option("--set", sweep.overrides, "Override a scene key in every run: key.path=value (repeatable)");
+  c.sweep_cmd->add_option("--only", sweep.only, "Run only these runs (names)");
+  c.sweep_cmd->add_flag("--list", sweep.list, "Print the runs with their overrides and exit");
+}
+
+// report, compare, measure, fit: the commands that read what runs wrote.
+void add_analysis_commands(CLI::App& app, Commands& c) {
+  c.report = app.add_subcommand(
+      "report", "A Markdown report with figures of a study (hvi sweep) or a measured run: tables against the paper's Tables 2 and 5");
+  c.report->add_option("dir", c.report_dir, "Study directory (sweep.csv) or run directory (measurements.csv)")->required();
+  c.report->add_flag("--no-run-figures", c.report_no_run_figures, "Skip the per-run top views (quicker for large runs)");
+
+  c.compare_cmd = app.add_subcommand("compare", "Two runs side by side: their measures, cost and energy balance (Markdown)");
+  c.compare_cmd->add_option("run_a", c.compare.a, "Run directory A")->required();
+  c.compare_cmd->add_option("run_b", c.compare.b, "Run directory B")->required();
+
+  c.measure = hvi::driver::add_measure_command(app);
+  c.fit = hvi::driver::add_fit_command(app);
+}
+
+// hvi run: a scene, or the run in --resume DIR with its resolved scene.
+int run(Commands& c, const std::string& command_line) {
+  hvi::driver::RunOptions options;
+  options.threads = c.threads;
+  options.overwrite = c.overwrite;
+  options.command_line = command_line;
+  if (!c.resume_dir.empty()) {
+    options.resume = true;
+    options.out = c.resume_dir;
+    c.scene_path = (options.out / "scene.resolved.toml").string();
+  } else {
+    if (c.scene_path.empty() || c.out_dir.empty()) {
+      fmt::print(stderr, "hvi run: give a scene and --out DIR, or --resume DIR\n");
+      return ExitCode::input_error;
+    }
+    options.out = c.out_dir;
+  }
+  const hvi::scene::Scene scene = hvi::scene::load_scene(c.scene_path, c.overrides);
+  return hvi::driver::run_scene(scene, options);
+}
+
+int dispatch(Commands& c, const std::string& command_line) {
+  if (*c.keys) {
+    fmt::print("{}", hvi::scene::markdown_reference(hvi::scene::scene_schema()));
+    return ExitCode::success;
+  }
+  if (*c.check) return check(c.scene_path, c.overrides);
+  if (*c.measure->command) return hvi::driver::measure_command(c.measure->options());
+  if (*c.fit->command) return hvi::driver::fit_command(c.fit->options);
+  if (*c.convergence_cmd) {
+    c.convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
+    return hvi::driver::run_convergence(c.convergence);
+  }
+  if (*c.report) return report(c.report_dir, c.report_no_run_figures);
+  if (*c.compare_cmd) return hvi::driver::compare_command(c.compare);
+  if (*c.sweep_cmd) {
+    c.sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
+    return hvi::driver::run_sweep(c.sweep);
+  }
+  if (*c.geometry) {
+    if (c.threads > 0) omp_set_num_threads(c.threads);
+    return hvi::driver::geometry_command(hvi::scene::load_scene(c.scene_path, c.overrides), c.out_dir);
+  }
+  if (*c.run) return run(c, command_line);
+  return ExitCode::success;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"hvi: hypervelocity impact on honeycomb sandwich panels (Material Point Method)"};
   app.set_version_flag("--version", fmt::format("hvi 0.1.0 ({})", hvi::git_revision));
   app.require_subcommand(1);
-
-  std::string scene_path, out_dir, resume_dir;
-  std::vector<std::string> overrides;
-  int threads = 0;
-  bool overwrite = false;
-
-  auto* check_cmd = app.add_subcommand("check", "Validate a scene and print what it will simulate");
-  check_cmd->add_option("scene", scene_path, "Scene file (TOML)")->required();
-  check_cmd->add_option("--set", overrides, "Override a scene key: key.path=value (repeatable)");
-
-  auto* run_cmd = app.add_subcommand("run", "Run a scene");
-  auto* scene_opt = run_cmd->add_option("scene", scene_path, "Scene file (TOML)");
-  auto* out_opt = run_cmd->add_option("--out", out_dir, "Output directory");
-  auto* resume_opt = run_cmd->add_option("--resume", resume_dir, "Continue the run in this directory from its checkpoint");
-  run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
-  run_cmd->add_option("--set", overrides, "Override a scene key: key.path=value (repeatable)");
-  run_cmd->add_flag("--overwrite", overwrite, "Replace a previous run in the output directory");
-  scene_opt->excludes(resume_opt);
-  out_opt->excludes(resume_opt);
-
-  auto* geometry_cmd = app.add_subcommand(
-      "geometry", "Build and sample the bodies; write each as STL and the points as HDF5/XDMF (ParaView)");
-  geometry_cmd->add_option("scene", scene_path, "Scene file (TOML)")->required();
-  geometry_cmd->add_option("--out", out_dir, "Output directory")->required();
-  geometry_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
-  geometry_cmd->add_option("--set", overrides, "Override a scene key: key.path=value (repeatable)");
-
-  auto* keys_cmd = app.add_subcommand("keys", "Print every scene key with its type, unit, range and default (Markdown)");
-
-  hvi::driver::ConvergenceOptions convergence;
-  auto* convergence_cmd = app.add_subcommand(
-      "convergence", "Run a scene at a ladder of resolutions: each [[measure]] with its error, wall time and memory");
-  convergence_cmd->add_option("scene", convergence.scene, "Scene file (TOML)")->required();
-  convergence_cmd->add_option("--out", convergence.out, "Output directory (one run per level inside)")->required();
-  convergence_cmd->add_option("--levels", convergence.levels, "Number of cell sizes, from the scene's down")
-      ->check(CLI::Range(1, 8));
-  convergence_cmd->add_option("--ratio", convergence.ratio, "Cell size ratio from one level to the next (2: halving; 1.41421 puts a level between)")
-      ->check(CLI::Range(1.05, 4.0));
-  convergence_cmd->add_option("--ppc", convergence.particles_per_cell, "Particles per cell per axis to try at each level (e.g. 1 2 3)");
-  convergence_cmd->add_option("--reference", convergence.references, "A known value name=value to measure errors against");
-  convergence_cmd->add_option("--threads", convergence.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
-  convergence_cmd->add_option("--set", convergence.overrides, "Override a scene key: key.path=value (repeatable)");
-
-  hvi::driver::SweepOptions sweep;
-  auto* sweep_cmd = app.add_subcommand("sweep", "Run a study (a grid of scenes), resumably; one row per run in DIR/sweep.csv");
-  sweep_cmd->add_option("study", sweep.study, "Study file (TOML: scene, [[axis]] levels, [[run]]s)")->required();
-  sweep_cmd->add_option("--out", sweep.out, "Output directory (one run per directory inside)")->required();
-  sweep_cmd->add_option("--threads", sweep.threads, "OpenMP threads of each run")->check(CLI::Range(1, 1024));
-  sweep_cmd->add_option("--set", sweep.overrides, "Override a scene key in every run: key.path=value (repeatable)");
-  sweep_cmd->add_option("--only", sweep.only, "Run only these runs (names)");
-  sweep_cmd->add_flag("--list", sweep.list, "Print the runs with their overrides and exit");
-
-  std::string report_dir;
-  bool report_no_run_figures = false;
-  auto* report_cmd = app.add_subcommand(
-      "report", "A Markdown report with figures of a study (hvi sweep) or a measured run: tables against the paper's Tables 2 and 5");
-  report_cmd->add_option("dir", report_dir, "Study directory (sweep.csv) or run directory (measurements.csv)")->required();
-  report_cmd->add_flag("--no-run-figures", report_no_run_figures, "Skip the per-run top views (quicker for large runs)");
-
-  hvi::driver::CompareOptions compare;
-  auto* compare_cmd = app.add_subcommand("compare", "Two runs side by side: their measures, cost and energy balance (Markdown)");
-  compare_cmd->add_option("run_a", compare.a, "Run directory A")->required();
-  compare_cmd->add_option("run_b", compare.b, "Run directory B")->required();
-
-  const auto measure = hvi::driver::add_measure_command(app);
-  const auto fit = hvi::driver::add_fit_command(app);
-
+  Commands commands;
+  add_scene_commands(app, commands);
+  add_study_commands(app, commands);
+  add_analysis_commands(app, commands);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -185,46 +254,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 
   try {
-    if (*keys_cmd) {
-      fmt::print("{}", hvi::scene::markdown_reference(hvi::scene::scene_schema()));
-      return ExitCode::success;
-    }
-    if (*check_cmd) return check(scene_path, overrides);
-    if (*measure->command) return hvi::driver::measure_command(measure->options());
-    if (*fit->command) return hvi::driver::fit_command(fit->options);
-    if (*convergence_cmd) {
-      convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
-      return hvi::driver::run_convergence(convergence);
-    }
-    if (*report_cmd) return report(report_dir, report_no_run_figures);
-    if (*compare_cmd) return hvi::driver::compare_command(compare);
-    if (*sweep_cmd) {
-      sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
-      return hvi::driver::run_sweep(sweep);
-    }
-    if (*geometry_cmd) {
-      if (threads > 0) omp_set_num_threads(threads);
-      return hvi::driver::geometry_command(hvi::scene::load_scene(scene_path, overrides), out_dir);
-    }
-    if (*run_cmd) {
-      hvi::driver::RunOptions options;
-      options.threads = threads;
-      options.overwrite = overwrite;
-      options.command_line = command_line;
-      if (!resume_dir.empty()) {
-        options.resume = true;
-        options.out = resume_dir;
-        scene_path = (options.out / "scene.resolved.toml").string();
-      } else {
-        if (scene_path.empty() || out_dir.empty()) {
-          fmt::print(stderr, "hvi run: give a scene and --out DIR, or --resume DIR\n");
-          return ExitCode::input_error;
-        }
-        options.out = out_dir;
-      }
-      const hvi::scene::Scene scene = hvi::scene::load_scene(scene_path, overrides);
-      return hvi::driver::run_scene(scene, options);
-    }
+    return dispatch(commands, command_line);
   } catch (const hvi::scene::SceneError& e) {
     print_errors(e);
     return ExitCode::input_error;
@@ -235,5 +265,4 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "hvi: {}\n", e.what());
     return ExitCode::run_failed;
   }
-  return ExitCode::success;
 }

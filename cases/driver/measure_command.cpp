@@ -159,14 +159,12 @@ OpenRun open_run(const MeasureOptions& o) {
   return r;
 }
 
-// The measurements of one snapshot (`index` a key of run.snapshots).
-Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::size_t index) {
-  Measurements out;
-  out.run = o.run;
-  const RunInfo& info = run.info;
-  const analysis::Snapshot& first = run.first;
+// The facesheets the measure reads: named, or the run's one panel's; -1 for one not measured.
+struct Facesheets {
+  int front = -1, rear = -1;
+};
 
-  // The facesheets.
+Facesheets facesheets(const MeasureOptions& o, const RunInfo& info) {
   std::string front = o.front, rear = o.rear;
   if (front.empty() && rear.empty()) {
     if (info.panels.size() != 1)
@@ -177,142 +175,102 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     front = info.panels[0].name + ".front";
     rear = info.panels[0].name + ".rear";
   }
-  const int front_body = front.empty() ? -1 : facesheet_body(info, front, "--front");
-  const int rear_body = rear.empty() ? -1 : facesheet_body(info, rear, "--rear");
+  return {front.empty() ? -1 : facesheet_body(info, front, "--front"),
+          rear.empty() ? -1 : facesheet_body(info, rear, "--rear")};
+}
 
-  // The back face the debris is counted behind: the last sheet's (particle centres sit half a
-  // spacing inside it). Mirroring keeps z, so the first snapshot's own points give it.
-  const int behind = rear_body >= 0 ? rear_body : front_body;
-  double z_back = INFINITY, debris_threshold = 0;
-  if (behind >= 0) {
-    const ParticleData& p = first.particles;
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (p.body[k] == behind) z_back = std::min(z_back, p.position[3 * k + 2] - p.spacing[k] / 2);
-    if (!std::isfinite(z_back))
-      throw std::invalid_argument(
-          fmt::format("body '{}' has no particles", info.bodies[behind].name));
-    debris_threshold = info.bodies[behind].spacing;
-  }
+// The back face the debris is counted behind: body `behind`'s (particle centres sit half a
+// spacing inside it), and one spacing behind it the debris threshold. Mirroring keeps z, so the
+// first snapshot's own points give it.
+struct BackFace {
+  double z = INFINITY, threshold = 0;
+};
 
-  // The chosen snapshot.
-  std::optional<analysis::Snapshot> read;
-  if (index != 0) {
-    read = analysis::read_snapshot(run.snapshots.at(index));
-    attach_spacing(read->particles, read->volume0, info, read->file);
-  }
-  const analysis::Snapshot& now = index == 0 ? first : *read;
-  out.snapshot_file = now.file;
-  out.time = now.time;
-  out.step = now.step;
-  if (now.particles.failed.empty())
-    out.notes.push_back(
-        "no 'failed' field in the snapshot (no failure model): every particle counts as intact");
-  // A hybrid's zone that grows adds points after t = 0, with ids beyond those of the first
-  // snapshot: mirror images then need a larger id offset, and the points have no initial state.
-  std::int64_t stride = run.stride;
-  for (const std::int64_t id : now.particles.id) stride = std::max(stride, id + 1);
-  out.mirror = run.mirror;
-  // What the measures read, mirrored: the facesheets, and whatever lies behind the back face
-  // (debris candidates; the debris test itself is one spacing further back).
-  std::vector<std::size_t> read_points;
-  {
-    const ParticleData& p = now.particles;
-    const double z_debris = z_back - debris_threshold / 2;
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (p.body[k] == front_body || p.body[k] == rear_body || p.position[3 * k + 2] < z_debris)
-        read_points.push_back(k);
-  }
-  const ParticleData current = analysis::mirrored(now.particles.view(), out.mirror, stride, read_points);
-  read_points = {};
+BackFace back_face(const RunInfo& info, const analysis::Snapshot& first, int behind) {
+  BackFace f;
+  if (behind < 0) return f;
+  const ParticleData& p = first.particles;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.body[k] == behind) f.z = std::min(f.z, p.position[3 * k + 2] - p.spacing[k] / 2);
+  if (!std::isfinite(f.z)) throw std::invalid_argument(fmt::format("body '{}' has no particles", info.bodies[behind].name));
+  f.threshold = info.bodies[behind].spacing;
+  return f;
+}
 
-  // The impact axis.
+// What the measures read, mirrored: the facesheets, and whatever lies behind the back face
+// (debris candidates; the debris test itself is one spacing further back).
+ParticleData points_read(const analysis::Snapshot& now, const Facesheets& sheets, const BackFace& back,
+                         const analysis::MirrorPlanes& mirror, std::int64_t stride) {
+  std::vector<std::size_t> read;
+  const ParticleData& p = now.particles;
+  const double z_debris = back.z - back.threshold / 2;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.body[k] == sheets.front || p.body[k] == sheets.rear || p.position[3 * k + 2] < z_debris) read.push_back(k);
+  return analysis::mirrored(p.view(), mirror, stride, read);
+}
+
+// The impact axis: given, or through the projectile's centroid at t = 0.
+std::array<double, 2> impact_axis(const MeasureOptions& o, const OpenRun& run) {
+  if (o.axis) return *o.axis;
+  if (run.projectile.body < 0)
+    throw std::invalid_argument("no body moves at t = 0 to take the impact axis from: give --axis x0,y0");
+  const ParticleData& initial = run.projectile_initial;
+  double m = 0, x = 0, y = 0;
+  for (std::size_t k = 0; k < initial.size(); ++k) {
+    m += initial.mass[k];
+    x += initial.mass[k] * initial.position[3 * k];
+    y += initial.mass[k] * initial.position[3 * k + 1];
+  }
+  // To a picometre: the centroid of a mirrored set is on the plane only to round-off (1e-21 m).
+  // (+ 0.0 turns -0 into 0.)
+  return {std::round(x / m * 1e12) / 1e12 + 0.0, std::round(y / m * 1e12) / 1e12 + 0.0};
+}
+
+// One facesheet in top view: its hole and the points still attached to it.
+std::pair<SheetMeasurement, analysis::FacesheetResult> measure_sheet(const MeasureOptions& o, const RunInfo& info,
+                                                                    const ParticleData& current, int body,
+                                                                    std::array<double, 2> axis,
+                                                                    analysis::DiameterRule rule) {
+  analysis::FacesheetOptions f;
+  f.axis = axis;
+  f.rule = rule;
+  f.rotation = o.rotation;
+  f.view.resolution = o.resolution;
+  f.view.gap_closing = o.gap_closing;
+  f.link_factor = o.link_factor;
+  analysis::FacesheetResult r = analysis::measure_facesheet(current.view(), body, f);
+  SheetMeasurement s{info.bodies[body].name, r.hole, r.raster.spacing, r.raster.closing_radius, r.intact, r.detached};
+  return {s, std::move(r)};
+}
+
+// Debris behind the last sheet's back face. Not debris: `excluded` (the sheet's own attached
+// material: a bulge, petals), and material that was behind the face from the start (the rest of
+// a panel when only --front is named).
+void measure_debris(Measurements& out, const OpenRun& run, const ParticleData& current, const BackFace& back,
+                    std::int64_t stride, std::vector<std::size_t> excluded) {
+  analysis::DebrisOptions d;
+  d.axis_point = {out.axis[0], out.axis[1], 0};
+  d.direction = impact_direction;
+  d.back_face = -back.z;  // (x - a) . d with d = -z
+  d.threshold = back.threshold;
+  // z at t = 0; a point added later by a growing zone (a panel layer's) takes its body's mean z
+  // at t = 0, which is its layer's.
+  for (std::size_t k = 0; k < current.size(); ++k) {
+    const auto original = static_cast<std::size_t>(current.id[k] % stride);
+    double z0 = original < run.initial_z.size() ? run.initial_z[original] : std::nan("");
+    if (std::isnan(z0)) z0 = run.body_mean_z[static_cast<std::size_t>(current.body[k])];
+    if (std::isnan(z0)) z0 = current.position[3 * k + 2];
+    if (z0 < back.z - d.threshold) excluded.push_back(k);
+  }
+  out.debris = analysis::debris_cloud(current.view(), d, excluded);
+  out.debris_back_face = back.z;
+  out.debris_threshold = d.threshold;
+}
+
+// The dimensional-analysis variables (paper Section 6).
+void add_variables(Measurements& out, const OpenRun& run, const Facesheets& sheets) {
+  const RunInfo& info = run.info;
   const Projectile& projectile = run.projectile;
-  if (o.axis) {
-    out.axis = *o.axis;
-  } else {
-    if (projectile.body < 0)
-      throw std::invalid_argument(
-          "no body moves at t = 0 to take the impact axis from: give --axis x0,y0");
-    const ParticleData& initial = run.projectile_initial;
-    double m = 0, x = 0, y = 0;
-    for (std::size_t k = 0; k < initial.size(); ++k) {
-      m += initial.mass[k];
-      x += initial.mass[k] * initial.position[3 * k];
-      y += initial.mass[k] * initial.position[3 * k + 1];
-    }
-    // To a picometre: the centroid of a mirrored set is on the plane only to round-off (1e-21 m).
-    // (+ 0.0 turns -0 into 0.)
-    out.axis = {std::round(x / m * 1e12) / 1e12 + 0.0, std::round(y / m * 1e12) / 1e12 + 0.0};
-  }
-
-  // The facesheets in top view.
-  auto measure_sheet = [&](int body, analysis::DiameterRule rule) {
-    analysis::FacesheetOptions f;
-    f.axis = out.axis;
-    f.rule = rule;
-    f.rotation = o.rotation;
-    f.view.resolution = o.resolution;
-    f.view.gap_closing = o.gap_closing;
-    f.link_factor = o.link_factor;
-    analysis::FacesheetResult r = analysis::measure_facesheet(current.view(), body, f);
-    SheetMeasurement s{info.bodies[body].name,  r.hole,   r.raster.spacing,
-                       r.raster.closing_radius, r.intact, r.detached};
-    return std::pair{s, std::move(r)};
-  };
-  std::vector<std::size_t> front_attached, rear_attached;
-  if (front_body >= 0) {
-    auto [s, view] = measure_sheet(front_body, o.front_rule);
-    out.front = s;
-    front_attached = view.attached;
-    if (o.images) out.front_view = std::move(view);
-  }
-  if (rear_body >= 0) {
-    auto [s, view] = measure_sheet(rear_body, o.rear_rule);
-    out.rear = s;
-    rear_attached = view.attached;
-    if (!s.hole.perforated && !view.attached.empty()) {
-      const ParticleSet p = first.particles.view();
-      const ParticleData initial =
-          analysis::mirrored(p, out.mirror, stride, analysis::particles_of(p, rear_body, false));
-      out.bulge = analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
-    }
-    if (o.images) out.rear_view = std::move(view);
-  }
-
-  // Taper, eq. (12).
-  out.core_height = o.core_height;
-  if (!out.core_height && info.panels.size() == 1) out.core_height = info.panels[0].core_height;
-  // (Not when a sheet has nothing attached left to measure: its hole has no size.)
-  if (out.front && out.rear && out.front->hole.perforated && out.rear->hole.perforated &&
-      out.front->hole.resolution > 0 && out.rear->hole.resolution > 0 && out.core_height)
-    out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
-
-  // Debris behind the last sheet's back face.
-  if (behind >= 0) {
-    analysis::DebrisOptions d;
-    d.axis_point = {out.axis[0], out.axis[1], 0};
-    d.direction = impact_direction;
-    d.back_face = -z_back;  // (x - a) . d with d = -z
-    d.threshold = debris_threshold;
-    // Not debris: the sheet's own attached material (a bulge, petals), and material that was
-    // behind the face from the start (the rest of a panel when only --front is named).
-    std::vector<std::size_t> excluded = rear_body >= 0 ? rear_attached : front_attached;
-    // z at t = 0; a point added later by a growing zone (a panel layer's) takes its body's
-    // mean z at t = 0, which is its layer's.
-    for (std::size_t k = 0; k < current.size(); ++k) {
-      const auto original = static_cast<std::size_t>(current.id[k] % stride);
-      double z0 = original < run.initial_z.size() ? run.initial_z[original] : std::nan("");
-      if (std::isnan(z0)) z0 = run.body_mean_z[static_cast<std::size_t>(current.body[k])];
-      if (std::isnan(z0)) z0 = current.position[3 * k + 2];
-      if (z0 < z_back - d.threshold) excluded.push_back(k);
-    }
-    out.debris = analysis::debris_cloud(current.view(), d, excluded);
-    out.debris_behind = info.bodies[behind].name;
-    out.debris_back_face = z_back;
-    out.debris_threshold = d.threshold;
-  }
-
-  // The dimensional-analysis variables (paper Section 6).
   auto add = [&](const char* name, std::optional<double> v) {
     if (v) out.variables.emplace_back(name, *v);
   };
@@ -333,16 +291,81 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     }
     add("d_p", d);
   }
-  add("t_f", front_body >= 0 ? info.bodies[front_body].thickness : std::nullopt);
-  add("t_r", rear_body >= 0 ? info.bodies[rear_body].thickness : std::nullopt);
-  add("c_f", speed_of(front_body));
-  add("c_r", speed_of(rear_body));
+  add("t_f", sheets.front >= 0 ? info.bodies[sheets.front].thickness : std::nullopt);
+  add("t_r", sheets.rear >= 0 ? info.bodies[sheets.rear].thickness : std::nullopt);
+  add("c_f", speed_of(sheets.front));
+  add("c_r", speed_of(sheets.rear));
   if (info.panels.size() == 1) {
     add("c_hc", speed_of(info.body(info.panels[0].name + ".core")));
     add("t_hc", info.panels[0].wall_thickness);
     add("D_hc", info.panels[0].cell_diameter);
   }
   add("S", out.core_height);
+}
+
+// The measurements of one snapshot (`index` a key of run.snapshots).
+Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::size_t index) {
+  Measurements out;
+  out.run = o.run;
+  const RunInfo& info = run.info;
+  const analysis::Snapshot& first = run.first;
+  const Facesheets sheets = facesheets(o, info);
+  const int behind = sheets.rear >= 0 ? sheets.rear : sheets.front;
+  const BackFace back = back_face(info, first, behind);
+
+  // The chosen snapshot.
+  std::optional<analysis::Snapshot> read;
+  if (index != 0) {
+    read = analysis::read_snapshot(run.snapshots.at(index));
+    attach_spacing(read->particles, read->volume0, info, read->file);
+  }
+  const analysis::Snapshot& now = index == 0 ? first : *read;
+  out.snapshot_file = now.file;
+  out.time = now.time;
+  out.step = now.step;
+  if (now.particles.failed.empty())
+    out.notes.push_back("no 'failed' field in the snapshot (no failure model): every particle counts as intact");
+  // A hybrid's zone that grows adds points after t = 0, with ids beyond those of the first
+  // snapshot: mirror images then need a larger id offset, and the points have no initial state.
+  std::int64_t stride = run.stride;
+  for (const std::int64_t id : now.particles.id) stride = std::max(stride, id + 1);
+  out.mirror = run.mirror;
+  const ParticleData current = points_read(now, sheets, back, out.mirror, stride);
+  out.axis = impact_axis(o, run);
+
+  // The facesheets in top view.
+  std::vector<std::size_t> front_attached, rear_attached;
+  if (sheets.front >= 0) {
+    auto [s, view] = measure_sheet(o, info, current, sheets.front, out.axis, o.front_rule);
+    out.front = s;
+    front_attached = view.attached;
+    if (o.images) out.front_view = std::move(view);
+  }
+  if (sheets.rear >= 0) {
+    auto [s, view] = measure_sheet(o, info, current, sheets.rear, out.axis, o.rear_rule);
+    out.rear = s;
+    rear_attached = view.attached;
+    if (!s.hole.perforated && !view.attached.empty()) {
+      const ParticleSet p = first.particles.view();
+      const ParticleData initial = analysis::mirrored(p, out.mirror, stride, analysis::particles_of(p, sheets.rear, false));
+      out.bulge = analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
+    }
+    if (o.images) out.rear_view = std::move(view);
+  }
+
+  // Taper, eq. (12).
+  out.core_height = o.core_height;
+  if (!out.core_height && info.panels.size() == 1) out.core_height = info.panels[0].core_height;
+  // (Not when a sheet has nothing attached left to measure: its hole has no size.)
+  if (out.front && out.rear && out.front->hole.perforated && out.rear->hole.perforated &&
+      out.front->hole.resolution > 0 && out.rear->hole.resolution > 0 && out.core_height)
+    out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
+
+  if (behind >= 0) {
+    measure_debris(out, run, current, back, stride, sheets.rear >= 0 ? rear_attached : front_attached);
+    out.debris_behind = info.bodies[behind].name;
+  }
+  add_variables(out, run, sheets);
   return out;
 }
 

@@ -45,34 +45,25 @@ struct Reader {
   }
 };
 
-}  // namespace
-
-RunInfo read_run_info(const std::filesystem::path& path) {
-  const Reader r{path.string()};
-  toml::table doc;
-  try {
-    doc = toml::parse_file(path.string());
-  } catch (const toml::parse_error& e) {
-    r.fail(fmt::format("cannot read the resolved scene: {}", e.description()));
-  }
-  RunInfo info;
-  const toml::table* grid = doc["grid"].as_table();
-  if (!grid) r.fail("no [grid]");
-  const double cell = r.number(*grid, "cell_size", "[grid]");
-
-  if (const toml::array* materials = doc["material"].as_array())
-    for (const auto& node : *materials) {
-      const toml::table& m = *node.as_table();
-      const std::string name = r.text(m, "name", "[[material]]");
-      if (const auto c0 = m["mie_gruneisen"]["c0"].value<double>();
-          c0 && m["eos"].value_or(std::string{}) == "mie-gruneisen") {
-        info.sound_speed[name] = *c0;
-      } else if (const auto E = m["youngs_modulus"].value<double>()) {
-        const double nu = m["poisson_ratio"].value_or(0.0), rho = m["density"].value_or(0.0);
-        if (rho > 0) info.sound_speed[name] = std::sqrt(*E / (3 * (1 - 2 * nu)) / rho);
-      }
+// Each material's bulk sound speed: the Mie-Grüneisen c0, else sqrt(K / rho) of its elasticity.
+void read_sound_speeds(const Reader& r, const toml::table& doc, RunInfo& info) {
+  const toml::array* materials = doc["material"].as_array();
+  if (!materials) return;
+  for (const auto& node : *materials) {
+    const toml::table& m = *node.as_table();
+    const std::string name = r.text(m, "name", "[[material]]");
+    if (const auto c0 = m["mie_gruneisen"]["c0"].value<double>();
+        c0 && m["eos"].value_or(std::string{}) == "mie-gruneisen") {
+      info.sound_speed[name] = *c0;
+    } else if (const auto E = m["youngs_modulus"].value<double>()) {
+      const double nu = m["poisson_ratio"].value_or(0.0), rho = m["density"].value_or(0.0);
+      if (rho > 0) info.sound_speed[name] = std::sqrt(*E / (3 * (1 - 2 * nu)) / rho);
     }
+  }
+}
 
+// The bodies, and each panel's three (front, core, rear) after them, in the solver's order.
+void read_bodies(const Reader& r, const toml::table& doc, double cell, RunInfo& info) {
   if (const toml::array* bodies = doc["body"].as_array())
     for (const auto& node : *bodies) {
       const toml::table& t = *node.as_table();
@@ -107,32 +98,60 @@ RunInfo read_run_info(const std::filesystem::path& path) {
       info.panels.push_back(p);
     }
   if (info.bodies.empty()) r.fail("no [[body]] or [[panel]]");
+}
 
-  if (const toml::array* zones = doc["refinement"].as_array())
-    for (const auto& node : *zones) {
-      const toml::table& t = *node.as_table();
-      const int factor = static_cast<int>(t["factor"].value_or(std::int64_t{2}));
-      const toml::array* names = t["bodies"].as_array();
-      for (auto& b : info.bodies) {
-        bool applies = !names || names->empty();
-        if (names)
-          for (const auto& n : *names) applies = applies || n.value_or(std::string{}) == b.name;
-        if (applies) b.refinements.push_back(factor);
-      }
+// The refinement factors that apply to each body.
+void read_refinements(const toml::table& doc, RunInfo& info) {
+  const toml::array* zones = doc["refinement"].as_array();
+  if (!zones) return;
+  for (const auto& node : *zones) {
+    const toml::table& t = *node.as_table();
+    const int factor = static_cast<int>(t["factor"].value_or(std::int64_t{2}));
+    const toml::array* names = t["bodies"].as_array();
+    for (auto& b : info.bodies) {
+      bool applies = !names || names->empty();
+      if (names)
+        for (const auto& n : *names) applies = applies || n.value_or(std::string{}) == b.name;
+      if (applies) b.refinements.push_back(factor);
     }
+  }
+}
 
-  if (const toml::array* boundaries = doc["boundary"].as_array())
-    for (const auto& node : *boundaries) {
-      const toml::table& t = *node.as_table();
-      if (t["type"].value_or(std::string{}) != "symmetry") continue;
-      const std::string face = r.text(t, "face", "[[boundary]]");
-      // No position: the domain face.
-      const int axis = face[0] - 'x';
-      const double position = t["position"].value<double>().value_or(
-          (*grid)[face[1] == '-' ? "lower" : "upper"][axis].value_or(0.0));
-      if (axis == 0) info.mirror.x = position;
-      if (axis == 1) info.mirror.y = position;
-    }
+// The symmetry planes on x and y, the planes a half or quarter model is mirrored across.
+void read_mirror_planes(const Reader& r, const toml::table& doc, const toml::table& grid, RunInfo& info) {
+  const toml::array* boundaries = doc["boundary"].as_array();
+  if (!boundaries) return;
+  for (const auto& node : *boundaries) {
+    const toml::table& t = *node.as_table();
+    if (t["type"].value_or(std::string{}) != "symmetry") continue;
+    const std::string face = r.text(t, "face", "[[boundary]]");
+    // No position: the domain face.
+    const int axis = face[0] - 'x';
+    const double position = t["position"].value<double>().value_or(
+        grid[face[1] == '-' ? "lower" : "upper"][axis].value_or(0.0));
+    if (axis == 0) info.mirror.x = position;
+    if (axis == 1) info.mirror.y = position;
+  }
+}
+
+}  // namespace
+
+RunInfo read_run_info(const std::filesystem::path& path) {
+  const Reader r{path.string()};
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    r.fail(fmt::format("cannot read the resolved scene: {}", e.description()));
+  }
+  RunInfo info;
+  const toml::table* grid = doc["grid"].as_table();
+  if (!grid) r.fail("no [grid]");
+  const double cell = r.number(*grid, "cell_size", "[grid]");
+  read_sound_speeds(r, doc, info);
+  read_bodies(r, doc, cell, info);
+  read_refinements(doc, info);
+  read_mirror_planes(r, doc, *grid, info);
   return info;
 }
 

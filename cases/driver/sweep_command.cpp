@@ -308,29 +308,28 @@ Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool 
   return e;
 }
 
-}  // namespace
-
-int run_sweep(const SweepOptions& o) {
-  Study study = load_study(o.study, o.overrides);
-  const Study whole = study;  // sweep.csv keeps the rows of runs made by earlier `--only`s
-  if (!o.only.empty()) {
-    std::vector<SweepRun> kept;
-    for (const auto& name : o.only) {
-      const auto it = std::find_if(study.runs.begin(), study.runs.end(), [&](const auto& r) { return r.name == name; });
-      if (it == study.runs.end()) {
-        std::string names;
-        for (const auto& r : study.runs) names += (names.empty() ? "" : ", ") + r.name;
-        fmt::print(stderr, "hvi sweep: {} has no run '{}' (runs: {})\n", o.study, name, names);
-        return input_error;
-      }
-      kept.push_back(*it);
+// The runs --only names, in its order (all when it names none); nullopt after saying which name
+// the study lacks.
+std::optional<std::vector<SweepRun>> select_runs(const Study& study, const SweepOptions& o) {
+  if (o.only.empty()) return study.runs;
+  std::vector<SweepRun> kept;
+  for (const auto& name : o.only) {
+    const auto it = std::find_if(study.runs.begin(), study.runs.end(), [&](const auto& r) { return r.name == name; });
+    if (it == study.runs.end()) {
+      std::string names;
+      for (const auto& r : study.runs) names += (names.empty() ? "" : ", ") + r.name;
+      fmt::print(stderr, "hvi sweep: {} has no run '{}' (runs: {})\n", o.study, name, names);
+      return std::nullopt;
     }
-    study.runs = std::move(kept);
+    kept.push_back(*it);
   }
-  // Every run's scene is checked before anything runs, so a typo in the last level does not
-  // surface hours into the study; so is every run already in --out: one run with another scene
-  // stops the sweep, and one with an earlier end time is run on (resumed) to the study's.
-  std::map<std::string, Existing> existing;
+  return kept;
+}
+
+// Every run's scene is checked before anything runs, so a typo in the last level does not
+// surface hours into the study; so is every run already in --out: one run with another scene
+// stops the sweep, and one with an earlier end time is run on (resumed) to the study's.
+int check_runs(const Study& study, const SweepOptions& o, std::map<std::string, Existing>& existing) {
   for (const auto& run : study.runs) {
     try {
       const scene::Scene wanted = scene::load_scene(study.scene, run.overrides);
@@ -348,6 +347,81 @@ int run_sweep(const SweepOptions& o) {
       return input_error;
     }
   }
+  return success;
+}
+
+// The `hvi run` arguments that start run k, resume it, or run it on to `extend`.
+std::vector<std::string> run_arguments(const SweepOptions& o, const Study& study, const SweepRun& run,
+                                       const fs::path& dir, bool resume, std::optional<double> extend) {
+  std::vector<std::string> args;
+  if (resume) {
+    args = {"run", "--resume", dir.string()};
+    // hvi run --resume removes the measurements of the earlier end, so the run is measured again.
+    if (extend) args.insert(args.end(), {"--set", fmt::format("run.end_time={:.17g}", *extend)});
+  } else {
+    args = {"run", study.scene, "--out", dir.string(), "--overwrite"};
+    for (const auto& s : run.overrides) args.insert(args.end(), {"--set", s});
+  }
+  if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
+  return args;
+}
+
+// Runs (or resumes, or runs on) run k as a child `hvi run` and says how it ended. Returns the
+// child's exit status; `summary` is the run's afterwards, `status_of` marks a run that failed or
+// stopped.
+int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Existing& existing, RunSummary& summary,
+            std::map<std::string, std::string>& status_of) {
+  const SweepRun& run = study.runs[k];
+  const fs::path dir = fs::path(o.out) / run.name;
+  const std::optional<double> extend = existing.end_time;
+  const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
+  const std::vector<std::string> args = run_arguments(o, study, run, dir, resume, extend);
+  fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name,
+             !resume                              ? "running"
+             : extend && summary.finished() ? fmt::format("running on to {:g} us", *extend * 1e6)
+                                            : "resuming");
+  if (resume && !existing.own_measures.empty()) fmt::print("    {}\n", existing.own_measures);
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  // The log names the run (the base scene's title is the same for every run) and keeps the
+  // earlier parts of a resumed or extended run.
+  const fs::path run_log = fs::path(o.out) / (run.name + ".log");
+  {
+    std::ofstream header(run_log, resume ? std::ios::app : std::ios::trunc);
+    header << fmt::format("hvi sweep: run '{}' of {}: {} {}\n", run.name, o.study, study.scene,
+                          fmt::join(run.overrides, " "));
+  }
+  const std::uintmax_t log_start = fs::file_size(run_log);
+  const int status = run_child(o.hvi, args, run_log, true);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary = read_run_summary(dir);
+  if (stopped_by_signal(status)) return status;
+  // The run's own account of how it ended, and its warnings (a disk too small for its output,
+  // say), on the console: a sweep of hours is watched there, not in each run's log.
+  const ChildLog said = read_child_log(run_log, log_start, study.scene);
+  if (status != success || !summary.finished()) {
+    const bool stopped = status == success && summary.status == "stopped";
+    status_of[run.name] = stopped ? "stopped" : "failed";
+    fmt::print("    {} after {:.1f} s (exit {}); see {}\n", stopped ? "stopped" : "failed", wall, status,
+               run_log.string());
+    for (const auto& line : said.outcome) fmt::print("      {}\n", line);
+  } else {
+    fmt::print("    finished in {:.1f} s\n", wall);
+  }
+  for (const auto& line : said.warnings) fmt::print("      {}\n", line);
+  return status;
+}
+
+}  // namespace
+
+int run_sweep(const SweepOptions& o) {
+  Study study = load_study(o.study, o.overrides);
+  const Study whole = study;  // sweep.csv keeps the rows of runs made by earlier `--only`s
+  auto selected_runs = select_runs(study, o);
+  if (!selected_runs) return input_error;
+  study.runs = std::move(*selected_runs);
+  std::map<std::string, Existing> existing;
+  if (const int code = check_runs(study, o, existing); code != success) return code;
   fmt::print("hvi sweep: {}{} — {} runs of {}\n", o.study, study.title.empty() ? "" : " (" + study.title + ")",
              study.runs.size(), study.scene);
   if (o.list) {
@@ -363,64 +437,18 @@ int run_sweep(const SweepOptions& o) {
     const SweepRun& run = study.runs[k];
     const fs::path dir = fs::path(o.out) / run.name;
     RunSummary summary = read_run_summary(dir);
-    const std::optional<double> extend = existing[run.name].end_time;
-    const auto say_own_measures = [&] {
-      if (!existing[run.name].own_measures.empty()) fmt::print("    {}\n", existing[run.name].own_measures);
-    };
-    if (summary.finished() && !extend) {
+    const Existing& e = existing[run.name];
+    if (summary.finished() && !e.end_time) {
       fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name, summary.wall_seconds);
-      say_own_measures();
+      if (!e.own_measures.empty()) fmt::print("    {}\n", e.own_measures);
     } else {
-      std::vector<std::string> args;
-      const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
-      if (resume) {
-        args = {"run", "--resume", dir.string()};
-        // hvi run --resume removes the measurements of the earlier end, so the run is measured again.
-        if (extend) args.insert(args.end(), {"--set", fmt::format("run.end_time={:.17g}", *extend)});
-      } else {
-        args = {"run", study.scene, "--out", dir.string(), "--overwrite"};
-        for (const auto& s : run.overrides) args.insert(args.end(), {"--set", s});
-      }
-      if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
-      fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name,
-                 !resume ? "running"
-                 : extend && summary.finished()
-                     ? fmt::format("running on to {:g} us", *extend * 1e6)
-                     : "resuming");
-      if (resume) say_own_measures();
-      std::fflush(stdout);
-      const auto start = std::chrono::steady_clock::now();
-      // The log names the run (the base scene's title is the same for every run) and keeps the
-      // earlier parts of a resumed or extended run.
-      const fs::path run_log = fs::path(o.out) / (run.name + ".log");
-      {
-        std::ofstream header(run_log, resume ? std::ios::app : std::ios::trunc);
-        header << fmt::format("hvi sweep: run '{}' of {}: {} {}\n", run.name, o.study, study.scene,
-                              fmt::join(run.overrides, " "));
-      }
-      const std::uintmax_t log_start = fs::file_size(run_log);
-      const int status = run_child(o.hvi, args, run_log, true);
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      summary = read_run_summary(dir);
+      const int status = run_one(o, study, k, e, summary, status_of);
       if (stopped_by_signal(status)) {
         fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n", run.name);
         write_table(whole, selected, o.out, status_of);
         return status;
       }
-      // The run's own account of how it ended, and its warnings (a disk too small for its output,
-      // say), on the console: a sweep of hours is watched there, not in each run's log.
-      const ChildLog said = read_child_log(run_log, log_start, study.scene);
-      if (status != success || !summary.finished()) {
-        const bool stopped = status == success && summary.status == "stopped";
-        status_of[run.name] = stopped ? "stopped" : "failed";
-        code = run_failed;
-        fmt::print("    {} after {:.1f} s (exit {}); see {}\n", stopped ? "stopped" : "failed", wall, status,
-                   run_log.string());
-        for (const auto& line : said.outcome) fmt::print("      {}\n", line);
-      } else {
-        fmt::print("    finished in {:.1f} s\n", wall);
-      }
-      for (const auto& line : said.warnings) fmt::print("      {}\n", line);
+      if (status != success || !summary.finished()) code = run_failed;
     }
     if (summary.finished() && !fs::exists(dir / "measurements.csv")) {
       const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");
