@@ -16,8 +16,8 @@
 #include <string>
 
 #include "bench/counters.hpp"
-#include "cases/driver/build_solver.hpp"
-#include "cases/driver/scene.hpp"
+#include "run/build_solver.hpp"
+#include "scene/scene.hpp"
 #include "mpm/io/checkpoint.hpp"
 
 namespace {

@@ -7,8 +7,8 @@
 
 #include "bench/counters.hpp"
 
-#include "cases/driver/build_solver.hpp"
-#include "cases/driver/scene.hpp"
+#include "run/build_solver.hpp"
+#include "scene/scene.hpp"
 
 namespace {
 

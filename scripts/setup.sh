@@ -7,7 +7,7 @@ HVI_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 HVI_BUILD="${HVI_BUILD:-$HVI_ROOT/build}"
 
 packages=(
-  cmake make g++ git pkg-config
+  cmake make g++ git pkg-config clang-format
   libtomlplusplus-dev libcli11-dev libfmt-dev libhdf5-dev libeigen3-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libdeal.ii-dev  # the finite-element far field (fem/): deal.II 9.4

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/table.hpp"
-#include "cases/driver/measure_command.hpp"
+#include "run/measure_command.hpp"
 #include "mpm/io/hdf5_file.hpp"
 #include "synthetic.hpp"
 

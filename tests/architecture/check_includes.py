@@ -10,7 +10,7 @@ import pathlib
 import re
 import sys
 
-LIBRARIES = ("materials", "geometry", "mpm", "fem", "coupling", "analysis")
+LIBRARIES = ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "scene", "run", "cli")
 
 # Folder -> what its files may include besides their own folder: folders, or a folder's subfolder.
 RULES = {
@@ -20,9 +20,11 @@ RULES = {
     "fem": ("materials",),  # hvi_fem: the laws, never through mpm/
     "coupling": ("materials", "geometry", "mpm", "fem"),  # hvi_coupling
     "analysis": ("mpm/io",),  # hvi_analysis: the snapshots' HDF5 reader, not the solver
-    "cases": LIBRARIES,  # hvi_scene, hvi_driver, hvi
-    "bench": LIBRARIES + ("cases",),
-    "tests": LIBRARIES + ("cases",),
+    "scene": ("materials", "mpm", "analysis"),  # hvi_scene: the one scene reader
+    "run": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "scene"),  # hvi_run
+    "cli": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "scene", "run"),  # hvi_cli, hvi
+    "bench": LIBRARIES,
+    "tests": LIBRARIES,
 }
 
 SOURCES = {".hpp", ".cpp", ".h", ".cc", ".cxx", ".hh", ".ipp", ".inl"}

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/driver/convergence_command.hpp"
+#include "cli/convergence_command.hpp"
 
 namespace fs = std::filesystem;
 using hvi::driver::richardson;

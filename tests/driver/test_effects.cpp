@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include "cases/driver/build_solver.hpp"
-#include "cases/driver/scene.hpp"
+#include "run/build_solver.hpp"
+#include "scene/scene.hpp"
 #include "mpm/io/hdf5_file.hpp"
 #include "mpm/io/snapshot_writer.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/driver/scene.hpp"
+#include "scene/scene.hpp"
 #include "tests/driver/scene_errors.hpp"
 
 namespace hvi::scene {

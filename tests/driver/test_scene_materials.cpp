@@ -3,7 +3,7 @@
 // name are located errors; the EOS warning appears when a fast impact meets a material without one.
 #include <gtest/gtest.h>
 
-#include "cases/driver/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::scene {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/driver/schema.hpp"
+#include "scene/schema.hpp"
 
 namespace hvi::scene {
 namespace {

@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
-#include "cases/driver/scene.hpp"
-#include "cases/driver/sweep_command.hpp"
+#include "scene/scene.hpp"
+#include "cli/sweep_command.hpp"
 
 namespace fs = std::filesystem;
 

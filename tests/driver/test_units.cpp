@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/driver/units.hpp"
+#include "scene/units.hpp"
 
 namespace hvi::scene {
 namespace {

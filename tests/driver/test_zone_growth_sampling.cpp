@@ -11,10 +11,10 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/driver/bodies.hpp"
-#include "cases/driver/build_solver.hpp"
-#include "cases/driver/hybrid.hpp"
-#include "cases/driver/scene.hpp"
+#include "run/bodies.hpp"
+#include "run/build_solver.hpp"
+#include "run/hybrid.hpp"
+#include "scene/scene.hpp"
 #include "geometry/honeycomb.hpp"
 
 namespace hvi {

@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cases/driver/bodies.hpp"
-#include "cases/driver/scene.hpp"
+#include "run/bodies.hpp"
+#include "scene/scene.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/surface.hpp"
 

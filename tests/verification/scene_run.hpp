@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "cases/driver/build_solver.hpp"
-#include "cases/driver/scene.hpp"
+#include "run/build_solver.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::test {
 
