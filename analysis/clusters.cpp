@@ -39,8 +39,8 @@ std::int64_t pack(std::int64_t i, std::int64_t j, std::int64_t k) {
 }  // namespace
 
 std::vector<std::size_t> attached_clusters(const ParticleSet& set,
-                                         std::span<const std::size_t> particles, double link_factor,
-                                         double fallback_spacing) {
+                                           std::span<const std::size_t> particles,
+                                           double link_factor, double fallback_spacing) {
   const std::size_t n = particles.size();
   if (n == 0) return {};
   std::vector<double> link(n);

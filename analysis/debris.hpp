@@ -26,8 +26,8 @@ struct DebrisOptions {
 struct Debris {
   double mass = 0;  // kg
   std::size_t particles = 0;
-  double axial_extent = 0;   // m behind the back face
-  double radial_extent = 0;  // m from the impact axis
+  double axial_extent = 0;    // m behind the back face
+  double radial_extent = 0;   // m from the impact axis
   double kinetic_energy = 0;  // J (0 without velocities)
 };
 

@@ -14,8 +14,8 @@ void append_field(std::vector<T>& out, std::span<const T> in, std::size_t p, int
 
 // The images of particles index(0), ..., index(n - 1), every field reserved to its size.
 template <class Index>
-ParticleData mirror_points(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride, std::size_t n,
-                           Index index) {
+ParticleData mirror_points(const ParticleSet& set, const MirrorPlanes& planes,
+                           std::int64_t id_stride, std::size_t n, Index index) {
   ParticleData out;
   const std::size_t copies = (planes.x ? 2 : 1) * (planes.y ? 2 : 1);
   auto reserve = [&](auto& field, const auto& from, std::size_t components) {
@@ -62,7 +62,8 @@ ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::i
 
 ParticleData mirrored(const ParticleSet& set, const MirrorPlanes& planes, std::int64_t id_stride,
                       std::span<const std::size_t> particles) {
-  return mirror_points(set, planes, id_stride, particles.size(), [&](std::size_t i) { return particles[i]; });
+  return mirror_points(set, planes, id_stride, particles.size(),
+                       [&](std::size_t i) { return particles[i]; });
 }
 
 ParticleData copy_of(const ParticleSet& set) {

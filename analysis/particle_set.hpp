@@ -22,7 +22,7 @@ struct ParticleSet {
   std::span<const double> failed;   // 0 intact, 1 failed (optional: no failure model, all intact)
   std::span<const double> spacing;  // point spacing, m (optional): the footprint edge
   std::span<const double> half_width;  // 3 per particle, m (optional): GIMP half-widths
-  std::span<const double> velocity;    // 3 per particle, m/s (optional: the debris's kinetic energy)
+  std::span<const double> velocity;  // 3 per particle, m/s (optional: the debris's kinetic energy)
 
   std::size_t size() const { return id.size(); }
   Vec3 x(std::size_t p) const {

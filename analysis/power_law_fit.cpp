@@ -76,7 +76,8 @@ std::vector<std::size_t> varying_groups(const PowerLawData& data, PowerLawFit& f
 
 // Collinearity among the varying groups: singular values of the centred, unit-norm columns of
 // the design matrix X (its first column the constant's).
-void check_collinearity(const Eigen::MatrixXd& X, const PowerLawData& data, const std::vector<std::size_t>& active) {
+void check_collinearity(const Eigen::MatrixXd& X, const PowerLawData& data,
+                        const std::vector<std::size_t>& active) {
   if (active.empty()) return;
   Eigen::MatrixXd Z = X.rightCols(X.cols() - 1);
   Z.rowwise() -= Z.colwise().mean();
@@ -96,8 +97,8 @@ void check_collinearity(const Eigen::MatrixXd& X, const PowerLawData& data, cons
 
 // Least squares ln y = X beta by QR, with the standard errors s^2 (X^T X)^-1, Student-t tests
 // and R^2 of the logarithm and of the variable itself.
-void solve(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const std::vector<std::size_t>& active,
-           double alpha, PowerLawFit& fit) {
+void solve(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
+           const std::vector<std::size_t>& active, double alpha, PowerLawFit& fit) {
   const auto n = X.rows(), p = X.cols();
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(X);
   const Eigen::VectorXd beta = qr.solve(y);

@@ -14,8 +14,8 @@ struct Snapshot {
   std::filesystem::path file;
   double time = 0;  // s
   std::int64_t step = 0;
-  ParticleData particles;        // position, id, body, mass, volume, failed, velocity (if written)
-  std::vector<double> volume0;   // initial volume, m^3 (volume / volume_ratio)
+  ParticleData particles;       // position, id, body, mass, volume, failed, velocity (if written)
+  std::vector<double> volume0;  // initial volume, m^3 (volume / volume_ratio)
 };
 
 // Throws std::runtime_error (or mpm::io::Hdf5Error) for a missing or malformed file.

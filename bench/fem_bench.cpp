@@ -21,9 +21,12 @@
 
 namespace {
 
-const hvi::mpm::HydroModels& library(const char* name) { return hvi::mpm::find_library_material(name)->parameters; }
+const hvi::mpm::HydroModels& library(const char* name) {
+  return hvi::mpm::find_library_material(name)->parameters;
+}
 
-hvi::fem::LayeredMesh study_panel_quarter(int degree, int facesheets, bool finite_strain, int core_kind) {
+hvi::fem::LayeredMesh study_panel_quarter(int degree, int facesheets, bool finite_strain,
+                                          int core_kind) {
   using namespace hvi::fem;
   const double h = 0.4e-3, zone = 12e-3, half = 150e-3;
   const auto &face_metal = library("Al6061"), &wall_metal = library("Al5052");
@@ -35,7 +38,8 @@ hvi::fem::LayeredMesh study_panel_quarter(int degree, int facesheets, bool finit
   m.x_steps = m.y_steps = graded_steps(0, half, 0, zone + 2 * fine, fine, 1.25, 3e-3, 0);
   m.hole = std::array<double, 4>{-1, -1, zone, zone};
   const Orthotropic face = isotropic(face_metal.youngs_modulus, face_metal.poisson_ratio);
-  const Orthotropic core = honeycomb_core(wall_metal.youngs_modulus, wall_metal.poisson_ratio, 3e-3, 0.05e-3);
+  const Orthotropic core =
+      honeycomb_core(wall_metal.youngs_modulus, wall_metal.poisson_ratio, 3e-3, 0.05e-3);
   const double rho_core = wall_metal.density * honeycomb_core_solidity(3e-3, 0.05e-3);
   std::optional<hvi::materials::JohnsonCookStrength> j2;
   std::optional<hvi::materials::JohnsonCookDamage> tear;
@@ -43,7 +47,8 @@ hvi::fem::LayeredMesh study_panel_quarter(int degree, int facesheets, bool finit
   if (facesheets == 2) tear = face_metal.damage;
   std::optional<CoreYield> caps;
   if (core_kind >= 1)
-    caps = honeycomb_core_yield(core, wall_metal.youngs_modulus, wall_metal.poisson_ratio, wall_metal.johnson_cook->A);
+    caps = honeycomb_core_yield(core, wall_metal.youngs_modulus, wall_metal.poisson_ratio,
+                                wall_metal.johnson_cook->A);
   if (core_kind == 2) caps->failure = honeycomb_core_failure(*wall_metal.damage);
   m.layers = {{"rear", -15.2e-3, -14.7e-3, 1, face, face_metal.density, j2, {}, tear},
               {"core", -14.7e-3, -0.5e-3, 4, core, rho_core, {}, caps, {}},
@@ -54,8 +59,9 @@ hvi::fem::LayeredMesh study_panel_quarter(int degree, int facesheets, bool finit
 }
 
 void FarFieldPanel(benchmark::State& state) {
-  hvi::fem::FarField f(study_panel_quarter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                                         state.range(2) != 0, static_cast<int>(state.range(3))));
+  hvi::fem::FarField f(study_panel_quarter(static_cast<int>(state.range(0)),
+                                           static_cast<int>(state.range(1)), state.range(2) != 0,
+                                           static_cast<int>(state.range(3))));
   const double dt = 0.9 * f.stable_time_step();
   auto v = f.velocity();
   for (std::size_t a = 0; a < f.node_count(); ++a) v[3 * a + 2] = 1.0;  // something to move
@@ -84,15 +90,24 @@ void FarFieldPanelTakenOver(benchmark::State& state) {
   const int steps = 100;
   for (auto _ : state)
     for (int s = 0; s < steps; ++s) f.step(dt);
-  const double nodes = static_cast<double>(f.node_count()), kept = static_cast<double>(f.cell_count() - f.removed_cell_count());
+  const double nodes = static_cast<double>(f.node_count()),
+               kept = static_cast<double>(f.cell_count() - f.removed_cell_count());
   state.counters["cells_kept"] = kept;
   state.counters["batches_visited"] = static_cast<double>(f.evaluated_batch_count());
-  state.counters["node_steps_per_s"] = benchmark::Counter(nodes * steps * state.iterations(), benchmark::Counter::kIsRate);
-  state.counters["kept_cell_steps_per_s"] = benchmark::Counter(kept * steps * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["node_steps_per_s"] =
+      benchmark::Counter(nodes * steps * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["kept_cell_steps_per_s"] =
+      benchmark::Counter(kept * steps * state.iterations(), benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(FarFieldPanelTakenOver)->ArgName("taken_mm")->Arg(0)->Arg(40)->Arg(80)
-    ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(FarFieldPanelTakenOver)
+    ->ArgName("taken_mm")
+    ->Arg(0)
+    ->Arg(40)
+    ->Arg(80)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 BENCHMARK(FarFieldPanel)
     ->ArgNames({"degree", "facesheets", "finite", "core"})
@@ -105,6 +120,8 @@ BENCHMARK(FarFieldPanel)
     ->Args({1, 1, 0, 2})
     ->Args({1, 2, 0, 2})
     ->Args({2, 0, 0, 0})
-    ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace

@@ -16,9 +16,9 @@
 #include <string>
 
 #include "bench/counters.hpp"
+#include "mpm/io/checkpoint.hpp"
 #include "run/build_solver.hpp"
 #include "scene/scene.hpp"
-#include "mpm/io/checkpoint.hpp"
 
 namespace {
 

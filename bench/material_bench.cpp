@@ -50,7 +50,8 @@ void TaylorBar(benchmark::State& state, const Rung& rung) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   std::vector<std::string> overrides;
   for (const auto& s : rung.settings) overrides.push_back("material.42CrMo4." + s);
-  const auto scene = hvi::scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/taylor_bar.toml", overrides);
+  const auto scene = hvi::scene::load_scene(
+      std::string(HVI_SOURCE_DIR) + "/cases/verification/taylor_bar.toml", overrides);
   const int steps = 100;
   hvi::bench::Measured measured;
   for (auto _ : state) {

@@ -12,7 +12,8 @@ namespace {
 
 // 1,000,000 particles (50^3 cells x 8 particles per cell), MUSL, 100 steps; range(0) threads.
 void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
-               hvi::mpm::Dilatation dilatation = hvi::mpm::Dilatation::particle, bool contact = false) {
+               hvi::mpm::Dilatation dilatation = hvi::mpm::Dilatation::particle,
+               bool contact = false) {
   const int threads = static_cast<int>(state.range(0));
   omp_set_num_threads(threads);
   hvi::mpm::SolverSettings settings;
@@ -34,9 +35,13 @@ void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
 }
 
 // The reference workload: linear shape functions.
-void ElasticBlock(benchmark::State& state) { run_block(state, hvi::mpm::ShapeFunction::linear); }
+void ElasticBlock(benchmark::State& state) {
+  run_block(state, hvi::mpm::ShapeFunction::linear);
+}
 // The scene default: cpGIMP (27-node stencils).
-void ElasticBlockCpGimp(benchmark::State& state) { run_block(state, hvi::mpm::ShapeFunction::cpgimp); }
+void ElasticBlockCpGimp(benchmark::State& state) {
+  run_block(state, hvi::mpm::ShapeFunction::cpgimp);
+}
 // cpGIMP with grid.dilatation = "node-average": two more passes over the points per step.
 void ElasticBlockCpGimpNodeAverage(benchmark::State& state) {
   run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::node_average);
@@ -48,10 +53,30 @@ void ElasticBlockCpGimpContact(benchmark::State& state) {
   run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::particle, true);
 }
 
-BENCHMARK(ElasticBlock)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK(ElasticBlockCpGimp)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK(ElasticBlockCpGimpNodeAverage)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK(ElasticBlockCpGimpContact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(ElasticBlock)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+BENCHMARK(ElasticBlockCpGimp)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+BENCHMARK(ElasticBlockCpGimpNodeAverage)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+BENCHMARK(ElasticBlockCpGimpContact)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 

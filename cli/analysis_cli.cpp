@@ -74,7 +74,10 @@ std::unique_ptr<MeasureCli> add_measure_command(CLI::App& app) {
                                                 "rear bulge and debris cloud of a run (finished, "
                                                 "or still going: its snapshots so far)");
   c->add_option("run", m->run, "Run directory (hvi run --out)")->required();
-  c->add_option("--snapshot", m->snapshot, "Snapshot index, 'last', or 'all' (one row per snapshot in measurements_history.csv)")->capture_default_str();
+  c->add_option(
+       "--snapshot", m->snapshot,
+       "Snapshot index, 'last', or 'all' (one row per snapshot in measurements_history.csv)")
+      ->capture_default_str();
   c->add_option("--axis", m->axis,
                 "Impact point x0,y0 (default: the projectile's centroid at t = 0)");
   c->add_option("--resolution", m->resolution,

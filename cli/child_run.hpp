@@ -13,8 +13,8 @@ namespace hvi::driver {
 
 // Runs `hvi ARGS...` with stdout and stderr to `log` (appended to with `append`); returns the exit
 // code (-1 if it did not exit normally).
-int run_child(const std::string& hvi, const std::vector<std::string>& args, const std::filesystem::path& log,
-              bool append = false);
+int run_child(const std::string& hvi, const std::vector<std::string>& args,
+              const std::filesystem::path& log, bool append = false);
 
 // What a child run said in its log from byte `from` on (one invocation of a log that resumed runs
 // append to): the lines that tell how it ended ("hvi: ..." other than the banner naming the scene
@@ -24,7 +24,8 @@ struct ChildLog {
   std::vector<std::string> outcome;
   std::vector<std::string> warnings;
 };
-ChildLog read_child_log(const std::filesystem::path& log, std::uintmax_t from, const std::string& scene_file);
+ChildLog read_child_log(const std::filesystem::path& log, std::uintmax_t from,
+                        const std::string& scene_file);
 
 // `s` in single quotes for the shell (a quote inside becomes '\'').
 std::string shell_quote(const std::string& s);

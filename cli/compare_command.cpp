@@ -17,7 +17,8 @@ namespace {
 toml::table read_summary(const std::filesystem::path& run) {
   const auto file = run / "summary.toml";
   if (!std::filesystem::exists(file))
-    throw std::invalid_argument(fmt::format("{} holds no summary.toml: not a finished hvi run", run.string()));
+    throw std::invalid_argument(
+        fmt::format("{} holds no summary.toml: not a finished hvi run", run.string()));
   try {
     return toml::parse_file(file.string());
   } catch (const toml::parse_error& e) {
@@ -45,15 +46,17 @@ std::string difference(std::optional<double> a, std::optional<double> b) {
 
 std::string compare_runs(const CompareOptions& options) {
   const toml::table a = read_summary(options.a), b = read_summary(options.b);
-  std::string out = fmt::format("| quantity | A: {} | B: {} | B - A |\n|---|---|---|---|\n", options.a.string(),
-                                options.b.string());
+  std::string out = fmt::format("| quantity | A: {} | B: {} | B - A |\n|---|---|---|---|\n",
+                                options.a.string(), options.b.string());
   // A value marked as a bound (a hole reaching its sheet's edge) shows as "≥ v", and so does the
   // difference it enters.
   auto row = [&](const std::string& name, std::optional<double> x, std::optional<double> y,
                  bool x_bound = false, bool y_bound = false) {
     std::string d = difference(x, y);
     if (!d.empty() && (x_bound || y_bound))
-      d += x_bound && y_bound ? " (both lower bounds)" : x_bound ? " (A a lower bound)" : " (B a lower bound)";
+      d += x_bound && y_bound ? " (both lower bounds)"
+           : x_bound          ? " (A a lower bound)"
+                              : " (B a lower bound)";
     out += fmt::format("| {} | {}{} | {}{} | {} |\n", name, x_bound && x ? "≥ " : "", cell(x),
                        y_bound && y ? "≥ " : "", cell(y), d);
   };
@@ -65,7 +68,9 @@ std::string compare_runs(const CompareOptions& options) {
       for (const auto& [key, value] : *m) measures.insert(std::string(key.str()));
   // D_f and D_r are lower bounds where the run's front_hole_open / rear_hole_open is 1.
   auto open = [](const toml::table& t, const std::string& m) {
-    const auto flag = m == "D_f" ? "measures.front_hole_open" : m == "D_r" ? "measures.rear_hole_open" : "";
+    const auto flag = m == "D_f"   ? "measures.front_hole_open"
+                      : m == "D_r" ? "measures.rear_hole_open"
+                                   : "";
     return *flag && number(t, flag).value_or(0.0) == 1.0;
   };
   for (const auto& m : measures)
@@ -85,14 +90,18 @@ std::string compare_runs(const CompareOptions& options) {
   row_if_any("steps the damage held the MPM zone at its limit", "mpm_zone_limit_reached_steps");
   row("steps", number(a, "steps"), number(b, "steps"));
   row("threads", number(a, "threads"), number(b, "threads"));
-  // A resumed run's cost is all its invocations (wall_seconds_total), where its checkpoints recorded them.
+  // A resumed run's cost is all its invocations (wall_seconds_total), where its checkpoints
+  // recorded them.
   auto wall = [&](const toml::table& t) {
     const auto total = number(t, "wall_seconds_total");
     return total ? total : number(t, "wall_seconds");
   };
   row("wall time (s)", wall(a), wall(b));
-  row("particle-steps/s", number(a, "particle_steps_per_second"), number(b, "particle_steps_per_second"));
-  auto mb = [](std::optional<double> bytes) { return bytes ? std::optional<double>(*bytes / 1e6) : std::nullopt; };
+  row("particle-steps/s", number(a, "particle_steps_per_second"),
+      number(b, "particle_steps_per_second"));
+  auto mb = [](std::optional<double> bytes) {
+    return bytes ? std::optional<double>(*bytes / 1e6) : std::nullopt;
+  };
   row("peak memory (MB)", mb(number(a, "peak_memory_bytes")), mb(number(b, "peak_memory_bytes")));
   row_if_any("peak memory with the hole measurement (MB)", "peak_memory_with_measure_bytes", 1e-6);
   row("energy balance", number(a, "energy_balance"), number(b, "energy_balance"));

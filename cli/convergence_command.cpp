@@ -57,7 +57,8 @@ Extrapolation richardson(double q0, double q1, double q2, double ratio) {
 namespace {
 
 // The ladder: each cell size from the scene's down by `ratio`, at each particle count.
-std::vector<Level> ladder_levels(const ConvergenceOptions& o, const scene::Scene& base, const std::vector<int>& ppcs) {
+std::vector<Level> ladder_levels(const ConvergenceOptions& o, const scene::Scene& base,
+                                 const std::vector<int>& ppcs) {
   std::vector<Level> levels;
   for (int k = 0; k < o.levels; ++k)
     for (const int ppc : ppcs) {
@@ -84,7 +85,8 @@ bool run_level(const ConvergenceOptions& o, const scene::Scene& base, Level& l) 
   args.insert(args.end(), {"--set", fmt::format("grid.cell_size={:.17g}", l.cell_size)});
   if (l.particles_per_cell)
     for (const auto& b : base.bodies)
-      args.insert(args.end(), {"--set", fmt::format("body.{}.particles_per_cell={}", b.name, l.particles_per_cell)});
+      args.insert(args.end(), {"--set", fmt::format("body.{}.particles_per_cell={}", b.name,
+                                                    l.particles_per_cell)});
   fmt::print("hvi convergence: running {} (cell {:.4g} m)\n", l.label, l.cell_size);
   std::fflush(stdout);
   const fs::path log = fs::path(o.out) / (l.label + ".log");
@@ -116,8 +118,8 @@ struct References {
   }
 };
 
-References references(const ConvergenceOptions& o, const scene::Scene& base, const std::vector<Level>& levels,
-                       int first_ppc) {
+References references(const ConvergenceOptions& o, const scene::Scene& base,
+                      const std::vector<Level>& levels, int first_ppc) {
   References r;
   std::vector<const Level*> ladder;
   for (const auto& l : levels)
@@ -125,8 +127,9 @@ References references(const ConvergenceOptions& o, const scene::Scene& base, con
   for (const auto& [name, value] : levels.back().measures) {
     if (ladder.size() >= 3) {
       const auto n = ladder.size();
-      r.extrapolated[name] = richardson(ladder[n - 3]->measures.at(name), ladder[n - 2]->measures.at(name),
-                                        ladder[n - 1]->measures.at(name), o.ratio);
+      r.extrapolated[name] =
+          richardson(ladder[n - 3]->measures.at(name), ladder[n - 2]->measures.at(name),
+                     ladder[n - 1]->measures.at(name), o.ratio);
       r.value[name] = r.extrapolated[name].value;
     }
   }
@@ -142,40 +145,53 @@ References references(const ConvergenceOptions& o, const scene::Scene& base, con
 // convergence.csv: one row per level and quantity.
 void write_csv(const ConvergenceOptions& o, const std::vector<Level>& levels, const References& r) {
   std::ofstream csv(fs::path(o.out) / "convergence.csv");
-  csv << "level,cell_size,particles_per_cell,particles,steps,wall_seconds,peak_memory_bytes,quantity,value,reference,relative_error\n";
+  csv << "level,cell_size,particles_per_cell,particles,steps,wall_seconds,peak_memory_bytes,"
+         "quantity,value,reference,relative_error\n";
   for (const auto& l : levels)
     for (const auto& [name, value] : l.measures) {
       const double ref = r.of(name);
-      csv << fmt::format("{},{:.6g},{},{:.0f},{:.0f},{:.3f},{:.0f},{},{:.10g},{:.10g},{:.6g}\n", l.label, l.cell_size,
-                         l.particles_per_cell, l.particles, l.steps, l.wall_seconds, l.peak_memory, name, value, ref,
+      csv << fmt::format("{},{:.6g},{},{:.0f},{:.0f},{:.3f},{:.0f},{},{:.10g},{:.10g},{:.6g}\n",
+                         l.label, l.cell_size, l.particles_per_cell, l.particles, l.steps,
+                         l.wall_seconds, l.peak_memory, name, value, ref,
                          r.relative_error(name, value, ref));
     }
 }
 
 // convergence.md: a table per quantity, error and cost side by side.
-std::string markdown(const ConvergenceOptions& o, const std::vector<Level>& levels, const References& r) {
-  std::string md = fmt::format("# Convergence of {}\n\nCommand: `hvi convergence {} --levels {}{}`\n\n", o.scene, o.scene,
-                               o.levels, o.ratio == 2.0 ? "" : fmt::format(" --ratio {:g}", o.ratio));
+std::string markdown(const ConvergenceOptions& o, const std::vector<Level>& levels,
+                     const References& r) {
+  std::string md =
+      fmt::format("# Convergence of {}\n\nCommand: `hvi convergence {} --levels {}{}`\n\n", o.scene,
+                  o.scene, o.levels, o.ratio == 2.0 ? "" : fmt::format(" --ratio {:g}", o.ratio));
   for (const auto& entry : levels.back().measures) {
     const std::string& name = entry.first;
     const double ref = r.of(name);
     md += fmt::format("## {}\n\n", name);
     const auto e = r.extrapolated.find(name);
     if (e != r.extrapolated.end() && std::isfinite(e->second.order))
-      md += fmt::format("Observed order {:.2f}; Richardson-extrapolated value {:.6g}.\n\n", e->second.order,
-                        e->second.value);
-    if (r.is_error.count(name)) md += "The value is itself the relative error of the energy balance.\n\n";
-    else if (std::isfinite(ref)) md += fmt::format("Reference: {:.6g}\n\n", ref);
-    else md += "No reference (three converging levels or --reference name=value are needed for errors).\n\n";
-    md += "| level | cell (mm) | ppc | particles | value | error vs reference | wall time (s) | peak memory (MB) |\n";
+      md += fmt::format("Observed order {:.2f}; Richardson-extrapolated value {:.6g}.\n\n",
+                        e->second.order, e->second.value);
+    if (r.is_error.count(name))
+      md += "The value is itself the relative error of the energy balance.\n\n";
+    else if (std::isfinite(ref))
+      md += fmt::format("Reference: {:.6g}\n\n", ref);
+    else
+      md +=
+          "No reference (three converging levels or --reference name=value are needed for "
+          "errors).\n\n";
+    md +=
+        "| level | cell (mm) | ppc | particles | value | error vs reference | wall time (s) | peak "
+        "memory (MB) |\n";
     md += "|---|---|---|---|---|---|---|---|\n";
     for (const auto& l : levels) {
-      const double v = l.measures.count(name) ? l.measures.at(name) : std::numeric_limits<double>::quiet_NaN();
+      const double v =
+          l.measures.count(name) ? l.measures.at(name) : std::numeric_limits<double>::quiet_NaN();
       const double err = r.relative_error(name, v, ref);
       const std::string error = std::isfinite(err) ? fmt::format("{:+.3g}%", 100 * err) : "—";
-      md += fmt::format("| {} | {:.4g} | {} | {:.0f} | {:.6g} | {} | {:.1f} | {:.0f} |\n", l.label, l.cell_size * 1e3,
-                        l.particles_per_cell ? std::to_string(l.particles_per_cell) : "scene", l.particles, v, error,
-                        l.wall_seconds, l.peak_memory / 1e6);
+      md += fmt::format("| {} | {:.4g} | {} | {:.0f} | {:.6g} | {} | {:.1f} | {:.0f} |\n", l.label,
+                        l.cell_size * 1e3,
+                        l.particles_per_cell ? std::to_string(l.particles_per_cell) : "scene",
+                        l.particles, v, error, l.wall_seconds, l.peak_memory / 1e6);
     }
     md += "\n";
   }
@@ -186,19 +202,23 @@ std::string markdown(const ConvergenceOptions& o, const std::vector<Level>& leve
 // (with python3-matplotlib) rather than another one earlier on the PATH.
 void plot(const ConvergenceOptions& o) {
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string plot = fmt::format("{} {} {} > /dev/null 2>&1", python, shell_quote(std::string(HVI_SOURCE_DIR) + "/scripts/plot_convergence.py"),
-                                       shell_quote(o.out));
+  const std::string plot =
+      fmt::format("{} {} {} > /dev/null 2>&1", python,
+                  shell_quote(std::string(HVI_SOURCE_DIR) + "/scripts/plot_convergence.py"),
+                  shell_quote(o.out));
   if (std::system(plot.c_str()) == 0)
     fmt::print("plots: {}\n", (fs::path(o.out) / "convergence.png").string());
   else
-    fmt::print("(no plots: python3 with matplotlib not found; the CSV and Markdown are complete)\n");
+    fmt::print(
+        "(no plots: python3 with matplotlib not found; the CSV and Markdown are complete)\n");
 }
 
 }  // namespace
 
 int run_convergence(const ConvergenceOptions& o) {
   const scene::Scene base = scene::load_scene(o.scene, o.overrides);
-  const std::vector<int> ppcs = o.particles_per_cell.empty() ? std::vector<int>{0} : o.particles_per_cell;
+  const std::vector<int> ppcs =
+      o.particles_per_cell.empty() ? std::vector<int>{0} : o.particles_per_cell;
   std::vector<Level> levels = ladder_levels(o, base, ppcs);
   fs::create_directories(o.out);
   for (auto& l : levels)

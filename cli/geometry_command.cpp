@@ -5,10 +5,10 @@
 
 #include <fmt/format.h>
 
-#include "run/bodies.hpp"
-#include "run/run.hpp"
 #include "geometry/surface.hpp"
 #include "mpm/io/hdf5_file.hpp"
+#include "run/bodies.hpp"
+#include "run/run.hpp"
 
 namespace hvi::driver {
 

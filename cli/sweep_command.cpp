@@ -32,13 +32,17 @@ const TableSpec& study_schema() {
     root.string("title", "", "A line describing the study")
         .string_required("scene", "The scene every run starts from (relative to the study file)")
         .string_list("set", {}, "Overrides key.path=value for every run (e.g. resolution=coarse)");
-    TableSpec level{.name = "level", .doc = "One value of an axis", .array = true, .required = true};
+    TableSpec level{
+        .name = "level", .doc = "One value of an axis", .array = true, .required = true};
     level.string_required("label", "Name of the level in run names and sweep.csv")
         .string_list("set", {}, "Overrides key.path=value of this level");
-    TableSpec axis{.name = "axis", .doc = "A parameter varied over levels; the runs are the product of the axes", .array = true};
+    TableSpec axis{.name = "axis",
+                   .doc = "A parameter varied over levels; the runs are the product of the axes",
+                   .array = true};
     axis.string_required("name", "Column of sweep.csv holding the level's label").table(level);
     TableSpec run{.name = "run", .doc = "A run listed on its own", .array = true};
-    run.string_required("name", "Name of the run (its directory)").string_list("set", {}, "Overrides key.path=value of this run");
+    run.string_required("name", "Name of the run (its directory)")
+        .string_list("set", {}, "Overrides key.path=value of this run");
     root.table(axis).table(run);
     return root;
   }();
@@ -62,7 +66,8 @@ std::string override_key(const std::string& assignment) {
 bool valid_name(const std::string& name) {
   if (name.empty() || name == "." || name == "..") return false;
   for (const char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+      return false;
   return true;
 }
 
@@ -81,9 +86,12 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cell += c, ++i;
-      else if (c == '"') quoted = false;
-      else cell += c;
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        cell += c, ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        cell += c;
     } else if (c == '"') {
       quoted = true;
     } else if (c == ',') {
@@ -108,7 +116,9 @@ std::vector<std::pair<std::string, std::string>> read_measurements(const fs::pat
   return out;
 }
 
-std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
+std::string number(double v) {
+  return std::isfinite(v) ? fmt::format("{:.10g}", v) : "";
+}
 
 // sweep.csv from what the run directories hold now.
 // Rows: the runs selected now and every other run of the study already in `out`, in the study's
@@ -117,7 +127,8 @@ void write_table(const Study& study, const std::vector<std::string>& selected, c
                  const std::map<std::string, std::string>& status_of) {
   std::vector<SweepRun> runs;
   for (const auto& r : study.runs)
-    if (std::find(selected.begin(), selected.end(), r.name) != selected.end() || fs::exists(out / r.name))
+    if (std::find(selected.begin(), selected.end(), r.name) != selected.end() ||
+        fs::exists(out / r.name))
       runs.push_back(r);
   std::vector<std::string> axes;
   for (const auto& r : runs)
@@ -125,8 +136,9 @@ void write_table(const Study& study, const std::vector<std::string>& selected, c
       if (std::find(axes.begin(), axes.end(), axis) == axes.end()) axes.push_back(axis);
   std::vector<std::string> columns{"run"};
   columns.insert(columns.end(), axes.begin(), axes.end());
-  for (const char* c : {"status", "wall_seconds", "steps", "particles", "peak_memory_bytes", "peak_memory_with_measure_bytes",
-                        "energy_balance"}) columns.emplace_back(c);
+  for (const char* c : {"status", "wall_seconds", "steps", "particles", "peak_memory_bytes",
+                        "peak_memory_with_measure_bytes", "energy_balance"})
+    columns.emplace_back(c);
   const std::size_t fixed = columns.size();
   std::vector<std::map<std::string, std::string>> rows;
   for (const auto& r : runs) {
@@ -147,7 +159,9 @@ void write_table(const Study& study, const std::vector<std::string>& selected, c
     auto add = [&](const std::string& column, const std::string& value) {
       if (row.count(column)) return;
       row[column] = value;
-      if (std::find(columns.begin() + static_cast<std::ptrdiff_t>(fixed), columns.end(), column) == columns.end()) columns.push_back(column);
+      if (std::find(columns.begin() + static_cast<std::ptrdiff_t>(fixed), columns.end(), column) ==
+          columns.end())
+        columns.push_back(column);
     };
     for (const auto& [column, value] : read_measurements(dir))
       if (column != "run") add(column, value);
@@ -169,12 +183,15 @@ void write_table(const Study& study, const std::vector<std::string>& selected, c
 }  // namespace
 
 Study load_study(const std::string& path, const std::vector<std::string>& overrides) {
-  const scene::Validated v = scene::validate(scene::read_document(path, "study"), study_schema(), path);
+  const scene::Validated v =
+      scene::validate(scene::read_document(path, "study"), study_schema(), path);
   if (!v.ok()) throw SceneError(v.errors);
   const toml::table& r = v.resolved;
   Study study;
   study.title = r["title"].value<std::string>().value();
-  study.scene = (fs::path(path).parent_path() / r["scene"].value<std::string>().value()).lexically_normal().string();
+  study.scene = (fs::path(path).parent_path() / r["scene"].value<std::string>().value())
+                    .lexically_normal()
+                    .string();
   // Precedence, the later one winning: the study's own `set`, the run's (its levels' or its
   // [[run]]'s), then the command line's, as for `hvi run` (a scene's file, then --set).
   const std::vector<std::string> common = strings(r.get("set"));
@@ -195,8 +212,9 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
           const toml::table& level = *levels.get(l)->as_table();
           const std::string label = level["label"].value<std::string>().value();
           if (!valid_name(label))
-            errors.push_back(v.at(fmt::format("axis.{}.level.{}.label", axis_name, l),
-                                  "a label is part of a directory name: letters, digits, '_', '-', '.'"));
+            errors.push_back(
+                v.at(fmt::format("axis.{}.level.{}.label", axis_name, l),
+                     "a label is part of a directory name: letters, digits, '_', '-', '.'"));
           SweepRun run = partial;
           run.name += (run.name.empty() ? "" : "_") + label;
           run.labels.emplace_back(axis_name, label);
@@ -217,14 +235,17 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
       SweepRun run;
       run.name = t["name"].value<std::string>().value();
       if (!valid_name(run.name))
-        errors.push_back(v.at(fmt::format("run.{}.name", run.name), "a run name is a directory name: letters, digits, '_', '-', '.'"));
+        errors.push_back(v.at(fmt::format("run.{}.name", run.name),
+                              "a run name is a directory name: letters, digits, '_', '-', '.'"));
       run.overrides = strings(t.get("set"));
       study.runs.push_back(std::move(run));
     }
-  if (study.runs.empty()) errors.push_back(v.at("run", "a study needs at least one [[axis]] or [[run]]"));
+  if (study.runs.empty())
+    errors.push_back(v.at("run", "a study needs at least one [[axis]] or [[run]]"));
   std::set<std::string> seen;
   for (auto& run : study.runs) {
-    if (!seen.insert(run.name).second) errors.push_back(v.at("run", fmt::format("two runs are named '{}'", run.name)));
+    if (!seen.insert(run.name).second)
+      errors.push_back(v.at("run", fmt::format("two runs are named '{}'", run.name)));
     std::vector<std::string> all = common;
     all.insert(all.end(), run.overrides.begin(), run.overrides.end());
     all.insert(all.end(), overrides.begin(), overrides.end());
@@ -232,9 +253,10 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
   }
   for (const auto& s : overrides)
     if (axis_keys.count(override_key(s)))
-      errors.push_back(Diagnostic{"--set", 0, 0, override_key(s), s.substr(s.find('=') + 1),
-                                  "an axis of this study varies this key; fixing it on the command line would make "
-                                  "its levels the same run (select runs with --only instead)"});
+      errors.push_back(Diagnostic{
+          "--set", 0, 0, override_key(s), s.substr(s.find('=') + 1),
+          "an axis of this study varies this key; fixing it on the command line would make "
+          "its levels the same run (select runs with --only instead)"});
   if (!errors.empty()) throw SceneError(errors);
   return study;
 }
@@ -242,7 +264,8 @@ Study load_study(const std::string& path, const std::vector<std::string>& overri
 namespace {
 
 // The first dotted key whose value differs between two resolved scenes ("" if none).
-std::string first_difference(const toml::table& a, const toml::table& b, const std::string& prefix = "") {
+std::string first_difference(const toml::table& a, const toml::table& b,
+                             const std::string& prefix = "") {
   std::set<std::string> keys;
   for (const auto& [k, v] : a) keys.insert(std::string(k.str()));
   for (const auto& [k, v] : b) keys.insert(std::string(k.str()));
@@ -269,7 +292,7 @@ std::string first_difference(const toml::table& a, const toml::table& b, const s
 struct Existing {
   std::optional<double> end_time;  // continue to this end time
   std::string conflict;            // why the directory cannot be used
-  std::string own_measures;        // the study's [[measure]] differ from the run's, which it keeps: why
+  std::string own_measures;  // the study's [[measure]] differ from the run's, which it keeps: why
 };
 
 Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool finished) {
@@ -277,14 +300,16 @@ Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool 
   if (!fs::exists(dir / "scene.resolved.toml")) return e;
   const scene::Scene have = scene::load_scene((dir / "scene.resolved.toml").string());
   // How far and how often it writes, and what it measures, do not change what a run computes: not
-  // compared. A run resumed or run on keeps its own output and measures, as a finished one has them.
+  // compared. A run resumed or run on keeps its own output and measures, as a finished one has
+  // them.
   toml::table a = wanted.resolved, b = have.resolved;
   if (a["measure"] != b["measure"]) {
     e.own_measures = "it keeps the [[measure]] it was started with (the study's differ)";
     const bool history = std::any_of(wanted.measures.begin(), wanted.measures.end(),
                                      [](const auto& m) { return m.kind == "holes" && m.history; });
     if (history)
-      e.own_measures += fmt::format("; `hvi measure {} --snapshot all` measures its holes at every snapshot", dir.string());
+      e.own_measures += fmt::format(
+          "; `hvi measure {} --snapshot all` measures its holes at every snapshot", dir.string());
   }
   for (toml::table* t : {&a, &b}) {
     t->erase("output");
@@ -296,14 +321,16 @@ Existing compare_existing(const fs::path& dir, const scene::Scene& wanted, bool 
   }
   const std::string key = first_difference(a, b);
   if (!key.empty()) {
-    e.conflict = fmt::format("{} was run with another scene than the study's (key '{}' differs); remove it or "
-                             "choose another --out",
-                             dir.string(), key);
+    e.conflict = fmt::format(
+        "{} was run with another scene than the study's (key '{}' differs); remove it or "
+        "choose another --out",
+        dir.string(), key);
   } else if (wanted.end_time > have.end_time || (!finished && wanted.end_time != have.end_time)) {
     e.end_time = wanted.end_time;
   } else if (wanted.end_time < have.end_time) {
-    e.conflict = fmt::format("{} ran to {:g} us but the study now ends at {:g} us; remove it to rerun", dir.string(),
-                             have.end_time * 1e6, wanted.end_time * 1e6);
+    e.conflict =
+        fmt::format("{} ran to {:g} us but the study now ends at {:g} us; remove it to rerun",
+                    dir.string(), have.end_time * 1e6, wanted.end_time * 1e6);
   }
   return e;
 }
@@ -314,7 +341,8 @@ std::optional<std::vector<SweepRun>> select_runs(const Study& study, const Sweep
   if (o.only.empty()) return study.runs;
   std::vector<SweepRun> kept;
   for (const auto& name : o.only) {
-    const auto it = std::find_if(study.runs.begin(), study.runs.end(), [&](const auto& r) { return r.name == name; });
+    const auto it = std::find_if(study.runs.begin(), study.runs.end(),
+                                 [&](const auto& r) { return r.name == name; });
     if (it == study.runs.end()) {
       std::string names;
       for (const auto& r : study.runs) names += (names.empty() ? "" : ", ") + r.name;
@@ -329,7 +357,8 @@ std::optional<std::vector<SweepRun>> select_runs(const Study& study, const Sweep
 // Every run's scene is checked before anything runs, so a typo in the last level does not
 // surface hours into the study; so is every run already in --out: one run with another scene
 // stops the sweep, and one with an earlier end time is run on (resumed) to the study's.
-int check_runs(const Study& study, const SweepOptions& o, std::map<std::string, Existing>& existing) {
+int check_runs(const Study& study, const SweepOptions& o,
+               std::map<std::string, Existing>& existing) {
   for (const auto& run : study.runs) {
     try {
       const scene::Scene wanted = scene::load_scene(study.scene, run.overrides);
@@ -339,7 +368,8 @@ int check_runs(const Study& study, const SweepOptions& o, std::map<std::string, 
       }
     } catch (const SceneError& e) {
       for (const auto& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.text());
-      fmt::print(stderr, "hvi sweep: run '{}' of {} has an invalid scene; nothing was run\n", run.name, o.study);
+      fmt::print(stderr, "hvi sweep: run '{}' of {} has an invalid scene; nothing was run\n",
+                 run.name, o.study);
       return input_error;
     }
     if (!existing[run.name].conflict.empty()) {
@@ -351,8 +381,9 @@ int check_runs(const Study& study, const SweepOptions& o, std::map<std::string, 
 }
 
 // The `hvi run` arguments that start run k, resume it, or run it on to `extend`.
-std::vector<std::string> run_arguments(const SweepOptions& o, const Study& study, const SweepRun& run,
-                                       const fs::path& dir, bool resume, std::optional<double> extend) {
+std::vector<std::string> run_arguments(const SweepOptions& o, const Study& study,
+                                       const SweepRun& run, const fs::path& dir, bool resume,
+                                       std::optional<double> extend) {
   std::vector<std::string> args;
   if (resume) {
     args = {"run", "--resume", dir.string()};
@@ -369,15 +400,15 @@ std::vector<std::string> run_arguments(const SweepOptions& o, const Study& study
 // Runs (or resumes, or runs on) run k as a child `hvi run` and says how it ended. Returns the
 // child's exit status; `summary` is the run's afterwards, `status_of` marks a run that failed or
 // stopped.
-int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Existing& existing, RunSummary& summary,
-            std::map<std::string, std::string>& status_of) {
+int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Existing& existing,
+            RunSummary& summary, std::map<std::string, std::string>& status_of) {
   const SweepRun& run = study.runs[k];
   const fs::path dir = fs::path(o.out) / run.name;
   const std::optional<double> extend = existing.end_time;
   const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
   const std::vector<std::string> args = run_arguments(o, study, run, dir, resume, extend);
   fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name,
-             !resume                              ? "running"
+             !resume                        ? "running"
              : extend && summary.finished() ? fmt::format("running on to {:g} us", *extend * 1e6)
                                             : "resuming");
   if (resume && !existing.own_measures.empty()) fmt::print("    {}\n", existing.own_measures);
@@ -393,7 +424,8 @@ int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Exis
   }
   const std::uintmax_t log_start = fs::file_size(run_log);
   const int status = run_child(o.hvi, args, run_log, true);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary = read_run_summary(dir);
   if (stopped_by_signal(status)) return status;
   // The run's own account of how it ended, and its warnings (a disk too small for its output,
@@ -402,8 +434,8 @@ int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Exis
   if (status != success || !summary.finished()) {
     const bool stopped = status == success && summary.status == "stopped";
     status_of[run.name] = stopped ? "stopped" : "failed";
-    fmt::print("    {} after {:.1f} s (exit {}); see {}\n", stopped ? "stopped" : "failed", wall, status,
-               run_log.string());
+    fmt::print("    {} after {:.1f} s (exit {}); see {}\n", stopped ? "stopped" : "failed", wall,
+               status, run_log.string());
     for (const auto& line : said.outcome) fmt::print("      {}\n", line);
   } else {
     fmt::print("    finished in {:.1f} s\n", wall);
@@ -422,10 +454,11 @@ int run_sweep(const SweepOptions& o) {
   study.runs = std::move(*selected_runs);
   std::map<std::string, Existing> existing;
   if (const int code = check_runs(study, o, existing); code != success) return code;
-  fmt::print("hvi sweep: {}{} — {} runs of {}\n", o.study, study.title.empty() ? "" : " (" + study.title + ")",
-             study.runs.size(), study.scene);
+  fmt::print("hvi sweep: {}{} — {} runs of {}\n", o.study,
+             study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(), study.scene);
   if (o.list) {
-    for (const auto& run : study.runs) fmt::print("  {}: {}\n", run.name, fmt::join(run.overrides, " "));
+    for (const auto& run : study.runs)
+      fmt::print("  {}: {}\n", run.name, fmt::join(run.overrides, " "));
     return success;
   }
   fs::create_directories(o.out);
@@ -439,12 +472,14 @@ int run_sweep(const SweepOptions& o) {
     RunSummary summary = read_run_summary(dir);
     const Existing& e = existing[run.name];
     if (summary.finished() && !e.end_time) {
-      fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name, summary.wall_seconds);
+      fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name,
+                 summary.wall_seconds);
       if (!e.own_measures.empty()) fmt::print("    {}\n", e.own_measures);
     } else {
       const int status = run_one(o, study, k, e, summary, status_of);
       if (stopped_by_signal(status)) {
-        fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n", run.name);
+        fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n",
+                   run.name);
         write_table(whole, selected, o.out, status_of);
         return status;
       }
@@ -452,9 +487,11 @@ int run_sweep(const SweepOptions& o) {
     }
     if (summary.finished() && !fs::exists(dir / "measurements.csv")) {
       const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");
-      if (status != success) fmt::print("    not measured (see {})\n", (dir / "measure.log").string());
+      if (status != success)
+        fmt::print("    not measured (see {})\n", (dir / "measure.log").string());
     }
-    write_table(whole, selected, o.out, status_of);  // after every run: the table is current even if stopped
+    write_table(whole, selected, o.out,
+                status_of);  // after every run: the table is current even if stopped
   }
   fmt::print("hvi sweep: {} (one row per run); hvi fit {} --form front|rear|taper; hvi report {}\n",
              (fs::path(o.out) / "sweep.csv").string(), o.out, o.out);

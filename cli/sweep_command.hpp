@@ -9,7 +9,8 @@
 // A study file:
 //   title = "..."
 //   scene = "panel.toml"              # relative to the study file
-//   set = ["resolution=coarse"]       # overrides for every run (the command line's --set add to them)
+//   set = ["resolution=coarse"]       # overrides for every run (the command line's --set add to
+//   them)
 //   [[axis]]                          # runs: the product of the axes' levels, named label_label...
 //   name = "mass"
 //   [[axis.level]]
@@ -39,7 +40,7 @@ int run_sweep(const SweepOptions& options);
 struct SweepRun {
   std::string name;
   std::vector<std::pair<std::string, std::string>> labels;  // axis name, level label
-  std::vector<std::string> overrides;                      // the study's, then the run's
+  std::vector<std::string> overrides;                       // the study's, then the run's
 };
 struct Study {
   std::string title, scene;  // scene: a path relative to the working directory

@@ -57,15 +57,19 @@ void FarFieldCoupling::retie(const InterfaceBand& band) {
     std::array<std::array<double, 2>, 3> w{};
     std::array<int, 3> count{};
     for (int d = 0; d < 3; ++d) {
-      count[d] = axis_weights((x[3 * a + d] - grid.origin[d]) / grid.cell_size, grid.cells[d], node[d], w[d]);
+      count[d] = axis_weights((x[3 * a + d] - grid.origin[d]) / grid.cell_size, grid.cells[d],
+                              node[d], w[d]);
       if (count[d] < 0)
-        throw std::invalid_argument("far-field node " + std::to_string(a) + " of the interface band lies outside the MPM grid");
+        throw std::invalid_argument("far-field node " + std::to_string(a) +
+                                    " of the interface band lies outside the MPM grid");
     }
     for (int i = 0; i < count[0]; ++i)
       for (int j = 0; j < count[1]; ++j)
         for (int k = 0; k < count[2]; ++k) {
           const double weight = w[0][i] * w[1][j] * w[2][k];
-          if (weight > 0.0) ties_.push_back({static_cast<std::uint32_t>(a), {node[0][i], node[1][j], node[2][k]}, weight});
+          if (weight > 0.0)
+            ties_.push_back(
+                {static_cast<std::uint32_t>(a), {node[0][i], node[1][j], node[2][k]}, weight});
         }
     tied_[a] = 1;
     ++tied_nodes_;
@@ -76,7 +80,8 @@ void FarFieldCoupling::retie(const InterfaceBand& band) {
 }
 
 void FarFieldCoupling::request_blocks(std::vector<std::uint64_t>& keys) const {
-  for (const Tie& t : ties_) keys.push_back(mpm::SparseGrid::key_of_node(t.grid[0], t.grid[1], t.grid[2]));
+  for (const Tie& t : ties_)
+    keys.push_back(mpm::SparseGrid::key_of_node(t.grid[0], t.grid[1], t.grid[2]));
 }
 
 void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double, double dt) {
@@ -141,16 +146,20 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
   }
 }
 
-double FarFieldCoupling::stable_time_step() const { return safety_ * far_field_.stable_time_step(); }
+double FarFieldCoupling::stable_time_step() const {
+  return safety_ * far_field_.stable_time_step();
+}
 
 mpm::CoupledEnergy FarFieldCoupling::energy() const {
-  return {far_field_.kinetic_energy(), far_field_.strain_energy() + far_field_.plastic_work() + converted_,
+  return {far_field_.kinetic_energy(),
+          far_field_.strain_energy() + far_field_.plastic_work() + converted_,
           far_field_.momentum()};
 }
 
 std::vector<std::pair<std::string, std::span<double>>> FarFieldCoupling::state() {
   auto s = std::vector<std::pair<std::string, std::span<double>>>{
-      {"far_field_displacement", far_field_.displacement()}, {"far_field_velocity", far_field_.velocity()}};
+      {"far_field_displacement", far_field_.displacement()},
+      {"far_field_velocity", far_field_.velocity()}};
   for (auto& entry : far_field_.plastic_state()) s.push_back(entry);
   if (growing_) {
     s.emplace_back("far_field_zone", std::span<double>(band_.zone));

@@ -45,8 +45,8 @@ struct InterfaceBand {
 class FarFieldCoupling : public mpm::GridCoupling {
  public:
   // Throws std::invalid_argument when a tied node lies outside the grid or the band ties none.
-  FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid, const InterfaceBand& band,
-                   double flip = 1.0, double safety = 0.9);
+  FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid,
+                   const InterfaceBand& band, double flip = 1.0, double safety = 0.9);
 
   void request_blocks(std::vector<std::uint64_t>& keys) const override;
   void add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double time, double dt) override;
@@ -84,8 +84,8 @@ class FarFieldCoupling : public mpm::GridCoupling {
 
  private:
   struct Tie {
-    std::uint32_t node;          // far-field node
-    std::array<int, 3> grid;     // global grid node (i, j, k)
+    std::uint32_t node;       // far-field node
+    std::array<int, 3> grid;  // global grid node (i, j, k)
     double weight;
   };
   fem::FarField& far_field_;
@@ -94,9 +94,9 @@ class FarFieldCoupling : public mpm::GridCoupling {
   bool growing_ = false;
   double converted_ = 0.0;  // J
   double flip_, safety_;
-  std::vector<Tie> ties_;               // grouped by far-field node
-  std::vector<std::uint8_t> tied_;      // per far-field node
-  std::vector<double> force_;           // -K u^n, 3 per node
+  std::vector<Tie> ties_;                           // grouped by far-field node
+  std::vector<std::uint8_t> tied_;                  // per far-field node
+  std::vector<double> force_;                       // -K u^n, 3 per node
   std::vector<double> increment_, nodal_velocity_;  // per node: sum w dv_I, sum w (v_I + dv_I)
   std::size_t tied_nodes_ = 0, exact_nodes_ = 0;
 };

@@ -34,12 +34,12 @@ struct PanelFarFieldSpec {
   // the elements are one grid cell wide over it and its band, so that every band it may grow to
   // ties nodes that sit on grid nodes. None: a fixed zone.
   std::optional<std::array<double, 4>> growth_limit;
-  int band_elements = 2;         // grid-cell-wide elements beyond the zone
-  double ratio = 1.25;           // growth of the element length beyond them
-  double max_element = 0;        // m; 0: 6 times the thinner facesheet
-  int core_elements = 8;         // through the core height
-  int face_elements = 1;         // through each facesheet
-  bool finite_strain = false;    // Green-Lagrange kinematics (fem/far_field.hpp); false: small strain
+  int band_elements = 2;       // grid-cell-wide elements beyond the zone
+  double ratio = 1.25;         // growth of the element length beyond them
+  double max_element = 0;      // m; 0: 6 times the thinner facesheet
+  int core_elements = 8;       // through the core height
+  int face_elements = 1;       // through each facesheet
+  bool finite_strain = false;  // Green-Lagrange kinematics (fem/far_field.hpp); false: small strain
   // J2 facesheets (with `hardening`) whose yield stress takes the rate factor of their strain rate
   // (fem::Layer::strain_rate); false: the reference rate.
   bool strain_rate = false;

@@ -20,13 +20,15 @@ std::array<bool, 4> sides_reached(const mpm::Particles& P, std::span<const std::
   const std::vector<double>& start =
       P.has_field(reference_position_field) ? P.field(reference_position_field) : P.position;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const bool damaged = (damage && (*damage)[p] >= growth.damage) || (failed && (*failed)[p] > 0.0);
+    const bool damaged =
+        (damage && (*damage)[p] >= growth.damage) || (failed && (*failed)[p] > 0.0);
     if (!damaged || std::find(bodies.begin(), bodies.end(), P.body[p]) == bodies.end()) continue;
     const double x = start[3 * p], y = start[3 * p + 1], z = P.position[3 * p + 2];
     // Within the margin of a side, in plane, and not beyond the zone across it; in the panel
     // (debris flying out of it is not the panel's damage).
     if (x < zone[0] - growth.margin || x > zone[2] + growth.margin || y < zone[1] - growth.margin ||
-        y > zone[3] + growth.margin || z < growth.z_lower - growth.margin || z > growth.z_upper + growth.margin)
+        y > zone[3] + growth.margin || z < growth.z_lower - growth.margin ||
+        z > growth.z_upper + growth.margin)
       continue;
     reached[0] = reached[0] || x < zone[0] + growth.margin;
     reached[1] = reached[1] || y < zone[1] + growth.margin;
@@ -36,13 +38,15 @@ std::array<bool, 4> sides_reached(const mpm::Particles& P, std::span<const std::
   return reached;
 }
 
-std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres, const std::array<double, 4>& zone,
+std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres,
+                                               const std::array<double, 4>& zone,
                                                const ZoneGrowth& growth) {
   std::array<bool, 4> reached{};
   const double m = growth.margin;
   for (std::size_t k = 0; k + 1 < centres.size(); k += 2) {
     const double x = centres[k], y = centres[k + 1];
-    const bool across_x = y >= zone[1] - m && y <= zone[3] + m, across_y = x >= zone[0] - m && x <= zone[2] + m;
+    const bool across_x = y >= zone[1] - m && y <= zone[3] + m,
+               across_y = x >= zone[0] - m && x <= zone[2] + m;
     reached[0] = reached[0] || (across_x && x < zone[0] && x >= zone[0] - m);
     reached[1] = reached[1] || (across_y && y < zone[1] && y >= zone[1] - m);
     reached[2] = reached[2] || (across_x && x > zone[2] && x <= zone[2] + m);
@@ -51,8 +55,8 @@ std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres, 
   return reached;
 }
 
-std::array<double, 4> grown_zone(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
-                                 const ZoneGrowth& growth) {
+std::array<double, 4> grown_zone(const std::array<bool, 4>& reached,
+                                 const std::array<double, 4>& zone, const ZoneGrowth& growth) {
   std::array<double, 4> grown = zone;
   for (int side = 0; side < 4; ++side) {
     if (!reached[side] || !growth.movable[side]) continue;
@@ -68,7 +72,8 @@ std::array<double, 4> grown_zone(const mpm::Particles& P, std::span<const std::i
   return grown_zone(sides_reached(P, bodies, zone, growth), zone, growth);
 }
 
-std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
+std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached,
+                                        const std::array<double, 4>& zone,
                                         const ZoneGrowth& growth) {
   std::array<bool, 4> held{};
   // A side that reached its limit holds it exactly (grown_zone's max and min return the limit).
@@ -77,7 +82,8 @@ std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached, cons
   return held;
 }
 
-std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone, const std::array<double, 4>& grown) {
+std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone,
+                                        const std::array<double, 4>& grown) {
   std::vector<std::array<double, 4>> boxes;
   auto add = [&](double x0, double y0, double x1, double y1) {
     if (x1 > x0 && y1 > y0) boxes.push_back({x0, y0, x1, y1});
@@ -92,12 +98,14 @@ std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone, const
 namespace {
 
 // fem's Voigt order (xx, yy, zz, yz, xz, xy) into the particles' Tensor6 slots.
-constexpr int to_particle[6] = {mpm::sym::xx, mpm::sym::yy, mpm::sym::zz, mpm::sym::yz, mpm::sym::xz, mpm::sym::xy};
+constexpr int to_particle[6] = {mpm::sym::xx, mpm::sym::yy, mpm::sym::zz,
+                                mpm::sym::yz, mpm::sym::xz, mpm::sym::xy};
 
 // A wall point's stress (coupling/zone_growth.hpp) from the core's elastic strain e (fem's Voigt
 // order, tensor shears) and the wall's direction t; returns its elastic energy per volume,
 // 1/2 (sigma_zz e_zz + tau gamma_tz).
-double take_wall_stress(const LayerTakeover& walls, const fem::Sym& e, const double* t, double* stress) {
+double take_wall_stress(const LayerTakeover& walls, const fem::Sym& e, const double* t,
+                        double* stress) {
   const double E = walls.wall_youngs_modulus, G = E / (2.0 * (1.0 + walls.wall_poisson_ratio));
   const double e_zz = e[2], shear = 2.0 * (e[4] * t[0] + e[3] * t[1]);  // gamma_tz
   const double sigma_zz = E * e_zz, tau = G * shear;
@@ -118,19 +126,23 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
   report.points = n;
   const bool directions = points.wall_direction.size() == 2 * n;
   if (!directions && !points.wall_direction.empty())
-    throw std::invalid_argument("take_over: wall directions for " + std::to_string(points.wall_direction.size() / 2) +
-                                " of " + std::to_string(n) + " points");
+    throw std::invalid_argument("take_over: wall directions for " +
+                                std::to_string(points.wall_direction.size() / 2) + " of " +
+                                std::to_string(n) + " points");
   const auto samples = far_field.sample(points.position);
   for (std::size_t k = 0; k < n; ++k) {
     const int l = samples[k].layer;
-    if (l < 0 || layers.at(static_cast<std::size_t>(l)).kind != LayerTakeover::Kind::walls) continue;
-    if (!directions || (points.wall_direction[2 * k] == 0.0 && points.wall_direction[2 * k + 1] == 0.0))
+    if (l < 0 || layers.at(static_cast<std::size_t>(l)).kind != LayerTakeover::Kind::walls)
+      continue;
+    if (!directions ||
+        (points.wall_direction[2 * k] == 0.0 && points.wall_direction[2 * k + 1] == 0.0))
       throw std::invalid_argument("take_over: point " + std::to_string(k) +
                                   " of the honeycomb core's layer has no wall direction");
   }
 
   // 2. The far field gives up the zone's cells; its losses of energy and momentum.
-  const double kinetic_before = far_field.kinetic_energy(), strain_before = far_field.strain_energy();
+  const double kinetic_before = far_field.kinetic_energy(),
+               strain_before = far_field.strain_energy();
   const auto momentum_before = far_field.momentum();
   report.cells = far_field.remove_cells(band.zone);
   coupling.retie(band);
@@ -145,12 +157,15 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
   for (const auto id : P.id) next_id = std::max(next_id, id + 1);
   report.first_id = next_id;
   P.resize(first + n);
-  std::vector<double>* half_width = P.has_field(mpm::Solver::half_width_field) ? &P.field(mpm::Solver::half_width_field) : nullptr;
+  std::vector<double>* half_width = P.has_field(mpm::Solver::half_width_field)
+                                        ? &P.field(mpm::Solver::half_width_field)
+                                        : nullptr;
   std::vector<double>* pressure = P.has_field("eos_pressure") ? &P.field("eos_pressure") : nullptr;
   std::vector<double>* alpha = P.has_field("plastic_strain") ? &P.field("plastic_strain") : nullptr;
   std::vector<double>* damage = P.has_field("damage") ? &P.field("damage") : nullptr;
   std::vector<double>* failed = P.has_field("failed") ? &P.field("failed") : nullptr;
-  std::vector<double>* reference = P.has_field(reference_position_field) ? &P.field(reference_position_field) : nullptr;
+  std::vector<double>* reference =
+      P.has_field(reference_position_field) ? &P.field(reference_position_field) : nullptr;
   mpm::Vec3 lost{}, taken{};
   double new_mass = 0.0;
   for (int d = 0; d < 3; ++d) lost[d] = momentum_before[d] - momentum_after[d];
@@ -190,10 +205,12 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
         P.stress[6 * p + to_particle[k6]] = sigma;
       }
       if (!torn)
-        for (int k6 = 0; k6 < 6; ++k6) energy += 0.5 * (k6 < 3 ? 1.0 : 2.0) * s.stress[k6] * s.elastic_strain[k6];
+        for (int k6 = 0; k6 < 6; ++k6)
+          energy += 0.5 * (k6 < 3 ? 1.0 : 2.0) * s.stress[k6] * s.elastic_strain[k6];
       if (pressure) (*pressure)[p] = torn ? std::max(-mean, 0.0) : -mean;
     } else if (!torn) {
-      energy = take_wall_stress(layer, s.elastic_strain, &points.wall_direction[2 * k], &P.stress[6 * p]);
+      energy = take_wall_stress(layer, s.elastic_strain, &points.wall_direction[2 * k],
+                                &P.stress[6 * p]);
       const double e_zz = s.elastic_strain[2];
       P.volume[p] = points.volume[k] * (1.0 + (1.0 - 2.0 * layer.wall_poisson_ratio) * e_zz);
       if (pressure) (*pressure)[p] = -P.stress[6 * p + mpm::sym::zz] / 3.0;

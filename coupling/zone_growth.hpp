@@ -67,7 +67,8 @@ struct ZoneGrowth {
   double step = 0.0;              // m, a whole number of grid cells
   double margin = 0.0;            // m
   double damage = 1.0;            // D that counts as reaching the edge
-  double z_lower = 0.0, z_upper = 0.0;  // the panel's undeformed thickness, rear face to front face (m)
+  double z_lower = 0.0,
+         z_upper = 0.0;  // the panel's undeformed thickness, rear face to front face (m)
   // Per side (x0, y0, x1, y1): whether it may move (false on a symmetry plane).
   std::array<bool, 4> movable{true, true, true, true};
 };
@@ -75,7 +76,8 @@ struct ZoneGrowth {
 // Per side of `zone` (x0, y0, x1, y1): whether a damaged point of `bodies` (indices into the
 // scene's bodies) reaches it, as above (by its `reference_position_field` where the particles
 // have one), whether or not the side may move.
-std::array<bool, 4> sides_reached(const mpm::Particles& particles, std::span<const std::int64_t> bodies,
+std::array<bool, 4> sides_reached(const mpm::Particles& particles,
+                                  std::span<const std::int64_t> bodies,
                                   const std::array<double, 4>& zone, const ZoneGrowth& growth);
 
 // Per side of `zone`: whether the far field's own damage reaches it from outside, a damaged cell's
@@ -83,30 +85,34 @@ std::array<bool, 4> sides_reached(const mpm::Particles& particles, std::span<con
 // the side and across the zone's extent widened by `margin`. The far field tears only as its
 // failing layers let it and throws no debris, so damage there is a reason for the zone to grow,
 // as damage of the points at the side is.
-std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres, const std::array<double, 4>& zone,
+std::array<bool, 4> sides_reached_from_outside(std::span<const double> centres,
+                                               const std::array<double, 4>& zone,
                                                const ZoneGrowth& growth);
 
 // The zone grown by `step` on the movable sides `reached` names, each up to its limit; `zone`
 // itself when no side needs to move.
-std::array<double, 4> grown_zone(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
-                                 const ZoneGrowth& growth);
-std::array<double, 4> grown_zone(const mpm::Particles& particles, std::span<const std::int64_t> bodies,
+std::array<double, 4> grown_zone(const std::array<bool, 4>& reached,
+                                 const std::array<double, 4>& zone, const ZoneGrowth& growth);
+std::array<double, 4> grown_zone(const mpm::Particles& particles,
+                                 std::span<const std::int64_t> bodies,
                                  const std::array<double, 4>& zone, const ZoneGrowth& growth);
 
 // The sides `reached` names that would move but are at their limit: there the damage reaches
 // the far field, which cannot hold it (it tears only as its failing layers let it, and sprays no
 // debris), so the limit, not the damage, bounds the zone.
-std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached, const std::array<double, 4>& zone,
+std::array<bool, 4> sides_held_at_limit(const std::array<bool, 4>& reached,
+                                        const std::array<double, 4>& zone,
                                         const ZoneGrowth& growth);
 
 // The ring `grown` adds to `zone` (grown holds zone), as up to four in-plane boxes x0, y0, x1, y1
 // that do not overlap: below and above the zone along y over the grown zone's width, and left and
 // right of it along x over the zone's height.
-std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone, const std::array<double, 4>& grown);
+std::vector<std::array<double, 4>> ring(const std::array<double, 4>& zone,
+                                        const std::array<double, 4>& grown);
 
 // Material points, undeformed, that take over far-field cells.
 struct NewPoints {
-  std::vector<double> position;    // X, 3 per point (m)
+  std::vector<double> position;  // X, 3 per point (m)
   // The in-plane unit direction t of a wall point's wall (2 per point; zeros for a point not in
   // a honeycomb wall), or empty when there is no core among the points.
   std::vector<double> wall_direction;
@@ -119,11 +125,11 @@ struct NewPoints {
 
 struct TakeoverReport {
   std::size_t points = 0, cells = 0;
-  std::int64_t first_id = 0;      // the new points' ids: first_id + k for NewPoints' point k
-  double far_field_energy = 0.0;  // the far field's loss, J
-  double point_energy = 0.0;      // what the new points hold, J
-  double far_field_kinetic = 0.0;  // the kinetic part of far_field_energy, J
-  double point_kinetic = 0.0;      // the kinetic part of point_energy, J
+  std::int64_t first_id = 0;         // the new points' ids: first_id + k for NewPoints' point k
+  double far_field_energy = 0.0;     // the far field's loss, J
+  double point_energy = 0.0;         // what the new points hold, J
+  double far_field_kinetic = 0.0;    // the kinetic part of far_field_energy, J
+  double point_kinetic = 0.0;        // the kinetic part of point_energy, J
   double momentum_correction = 0.0;  // |dv| of step 3, m/s
 };
 

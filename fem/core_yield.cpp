@@ -4,8 +4,8 @@
 
 namespace hvi::fem {
 
-CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modulus, double wall_poisson_ratio,
-                               double wall_yield_stress) {
+CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modulus,
+                               double wall_poisson_ratio, double wall_yield_stress) {
   const double shear_modulus = wall_youngs_modulus / (2.0 * (1.0 + wall_poisson_ratio));
   const double shear_yield = wall_yield_stress / std::sqrt(3.0);
   return {core.E3 / wall_youngs_modulus * wall_yield_stress, core.G13 / shear_modulus * shear_yield,
@@ -58,8 +58,9 @@ void release(CoreYieldUpdate& r, const std::array<double, 9>& C, bool tearing) {
 
 }  // namespace
 
-CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain, double accumulated,
-                                  double damage, const std::array<double, 9>& C, const CoreYield& caps) {
+CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain,
+                                  double accumulated, double damage, const std::array<double, 9>& C,
+                                  const CoreYield& caps) {
   CoreYieldUpdate r{trial_stress, plastic_strain, accumulated, damage, 0.0};
   if (caps.failure && damage >= 1.0) {  // torn before this step: carries nothing out of plane
     release(r, C, false);
@@ -71,7 +72,8 @@ CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_st
     const double d = return_normal(r, C, std::copysign(caps.normal, szz));
     r.accumulated += std::abs(d);
     r.plastic_work += caps.normal * std::abs(d);
-    if (caps.failure) r.damage += std::abs(d) / (d > 0 ? caps.failure->tension : caps.failure->compression);
+    if (caps.failure)
+      r.damage += std::abs(d) / (d > 0 ? caps.failure->tension : caps.failure->compression);
   }
   // The shears: Voigt 3 = yz (C44 = G23), 4 = xz (C55 = G13).
   const struct {

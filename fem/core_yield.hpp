@@ -11,8 +11,8 @@
 // (yz) they carry tau_s = G_s gamma, so sigma_xz = (G13 / G_s) tau_s. With the walls' yield
 // stress sigma_ys (their Johnson-Cook A) and von Mises' tau_ys = sigma_ys / sqrt(3):
 //   sigma_zz in [-Y3, Y3],  Y3 = (E3 / E_s) sigma_ys = sigma_ys rho*/rho_s
-//   |sigma_xz| <= Y13 = (G13 / G_s) sigma_ys / sqrt(3)       (= sigma_ys t / (sqrt(3) D), single walls)
-//   |sigma_yz| <= Y23 = (G23 / G_s) sigma_ys / sqrt(3)
+//   |sigma_xz| <= Y13 = (G13 / G_s) sigma_ys / sqrt(3)       (= sigma_ys t / (sqrt(3) D), single
+//   walls) |sigma_yz| <= Y23 = (G23 / G_s) sigma_ys / sqrt(3)
 // The compressive cap is the walls' squash load, an upper bound: thin walls buckle and fold
 // first (Wierzbicki 1983), so crushing starts lower in a real core; in tension and shear the walls
 // yield as assumed.
@@ -54,27 +54,29 @@ struct CoreFailure {
 CoreFailure honeycomb_core_failure(const materials::JohnsonCookDamage& walls);
 
 struct CoreYield {
-  double normal = 0;    // Y3, Pa: |sigma_zz| at yield
-  double shear_xz = 0;  // Y13, Pa
-  double shear_yz = 0;  // Y23, Pa
+  double normal = 0;                   // Y3, Pa: |sigma_zz| at yield
+  double shear_xz = 0;                 // Y13, Pa
+  double shear_yz = 0;                 // Y23, Pa
   std::optional<CoreFailure> failure;  // a failing core; none: the caps hold at any strain
 };
 
 // The caps above from the core's moduli, its walls' E_s, nu_s and yield stress sigma_ys.
-CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modulus, double wall_poisson_ratio,
-                               double wall_yield_stress);
+CoreYield honeycomb_core_yield(const Orthotropic& core, double wall_youngs_modulus,
+                               double wall_poisson_ratio, double wall_yield_stress);
 
 struct CoreYieldUpdate {
   Sym stress{};
   Sym plastic_strain{};  // tensor shears, as Sym
-  double accumulated = 0.0;  // sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz| so far (to a tear)
-  double damage = 0.0;       // D of a failing core (>= 1: failed); 0 otherwise
+  double accumulated =
+      0.0;              // sum of |d eps_p,zz| + |d gamma_p,xz| + |d gamma_p,yz| so far (to a tear)
+  double damage = 0.0;  // D of a failing core (>= 1: failed); 0 otherwise
   double plastic_work = 0.0;  // J/m^3 over the step
 };
 
 // `trial_stress` = C (eps - eps_p,n); `C` the nine entries of fem::stiffness(); `damage` D at the
 // start of the step (a failing core's; 0 otherwise).
-CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain, double accumulated,
-                                  double damage, const std::array<double, 9>& C, const CoreYield& caps);
+CoreYieldUpdate core_yield_return(const Sym& trial_stress, const Sym& plastic_strain,
+                                  double accumulated, double damage, const std::array<double, 9>& C,
+                                  const CoreYield& caps);
 
 }  // namespace hvi::fem

@@ -1,6 +1,6 @@
 // The far field with deal.II: mesh, DoFs numbered node-major, matrix-free stiffness (and J2 or
-// capped core stresses in plastic layers), lumped mass, the element bound of the stable time step, and VTU
-// output.
+// capped core stresses in plastic layers), lumped mass, the element bound of the stable time step,
+// and VTU output.
 #include "fem/far_field_impl.hpp"
 
 namespace hvi::fem {
@@ -18,23 +18,45 @@ FarField::FarField(const LayeredMesh& mesh, unsigned threads) : impl_(std::make_
 
 FarField::~FarField() = default;
 
-std::size_t FarField::node_count() const { return impl_->mass.size(); }
-std::size_t FarField::cell_count() const { return impl_->triangulation.n_active_cells(); }
-int FarField::degree() const { return impl_->spec.degree; }
-std::span<const double> FarField::reference_positions() const { return impl_->positions; }
-std::span<const double> FarField::lumped_mass() const { return impl_->mass; }
-std::span<const int> FarField::node_layer() const { return impl_->layer; }
-std::span<double> FarField::displacement() { return {impl_->u.begin(), impl_->u.size()}; }
-std::span<const double> FarField::displacement() const { return {impl_->u.begin(), impl_->u.size()}; }
-std::span<double> FarField::velocity() { return {impl_->v.begin(), impl_->v.size()}; }
-std::span<const double> FarField::velocity() const { return {impl_->v.begin(), impl_->v.size()}; }
+std::size_t FarField::node_count() const {
+  return impl_->mass.size();
+}
+std::size_t FarField::cell_count() const {
+  return impl_->triangulation.n_active_cells();
+}
+int FarField::degree() const {
+  return impl_->spec.degree;
+}
+std::span<const double> FarField::reference_positions() const {
+  return impl_->positions;
+}
+std::span<const double> FarField::lumped_mass() const {
+  return impl_->mass;
+}
+std::span<const int> FarField::node_layer() const {
+  return impl_->layer;
+}
+std::span<double> FarField::displacement() {
+  return {impl_->u.begin(), impl_->u.size()};
+}
+std::span<const double> FarField::displacement() const {
+  return {impl_->u.begin(), impl_->u.size()};
+}
+std::span<double> FarField::velocity() {
+  return {impl_->v.begin(), impl_->v.size()};
+}
+std::span<const double> FarField::velocity() const {
+  return {impl_->v.begin(), impl_->v.size()};
+}
 
 void FarField::fix(std::size_t node, unsigned components) {
   impl_->fixed.at(node) |= components & 7u;
   for (int d = 0; d < 3; ++d)
     if (components & (1u << d)) impl_->u[3 * node + d] = impl_->v[3 * node + d] = 0.0;
 }
-unsigned FarField::fixed(std::size_t node) const { return impl_->fixed.at(node); }
+unsigned FarField::fixed(std::size_t node) const {
+  return impl_->fixed.at(node);
+}
 
 void FarField::apply_stiffness(std::span<const double> u, std::span<double> Ku) const {
   const auto n = impl_->u.size();
@@ -78,19 +100,25 @@ double FarField::stable_time_step() const {
 double FarField::kinetic_energy(std::span<const double> v) const {
   double e = 0.0;
   for (std::size_t a = 0; a < impl_->mass.size(); ++a)
-    e += 0.5 * impl_->mass[a] * (v[3 * a] * v[3 * a] + v[3 * a + 1] * v[3 * a + 1] + v[3 * a + 2] * v[3 * a + 2]);
+    e += 0.5 * impl_->mass[a] *
+         (v[3 * a] * v[3 * a] + v[3 * a + 1] * v[3 * a + 1] + v[3 * a + 2] * v[3 * a + 2]);
   return e;
 }
-double FarField::kinetic_energy() const { return kinetic_energy(velocity()); }
+double FarField::kinetic_energy() const {
+  return kinetic_energy(velocity());
+}
 
 double FarField::strain_energy() const {
   const auto& I = *impl_;
-  if (I.nonlinear()) return I.spec.degree == 1 ? I.elastic_energy_kernel<1>(I.u) : I.elastic_energy_kernel<2>(I.u);
+  if (I.nonlinear())
+    return I.spec.degree == 1 ? I.elastic_energy_kernel<1>(I.u) : I.elastic_energy_kernel<2>(I.u);
   I.apply(I.u, I.work_out);
   return 0.5 * (I.u * I.work_out);
 }
 
-double FarField::plastic_work() const { return impl_->plastic_work; }
+double FarField::plastic_work() const {
+  return impl_->plastic_work;
+}
 
 std::vector<FarField::PointSample> FarField::sample(std::span<const double> points) const {
   const auto& I = *impl_;
@@ -130,11 +158,14 @@ std::vector<FarField::PointSample> FarField::sample(std::span<const double> poin
       const Tensor<1, dim> g = I.fe->shape_grad_component(i, unit, c);
       r.displacement[c] += N * I.u[dofs[i]];
       r.velocity[c] += N * I.v[dofs[i]];
-      for (int d = 0; d < dim; ++d) H[c][d] += g[d] / (I.lines[d][b[d] + 1] - I.lines[d][b[d]]) * I.u[dofs[i]];
+      for (int d = 0; d < dim; ++d)
+        H[c][d] += g[d] / (I.lines[d][b[d] + 1] - I.lines[d][b[d]]) * I.u[dofs[i]];
     }
-    for (int k = 0; k < 6; ++k) r.strain[k] = 0.5 * (H[voigt[k][0]][voigt[k][1]] + H[voigt[k][1]][voigt[k][0]]);
+    for (int k = 0; k < 6; ++k)
+      r.strain[k] = 0.5 * (H[voigt[k][0]][voigt[k][1]] + H[voigt[k][1]][voigt[k][0]]);
     Tensor<2, dim> eps;
-    for (int k = 0; k < 6; ++k) eps[voigt[k][0]][voigt[k][1]] = eps[voigt[k][1]][voigt[k][0]] = r.strain[k];
+    for (int k = 0; k < 6; ++k)
+      eps[voigt[k][0]][voigt[k][1]] = eps[voigt[k][1]][voigt[k][0]] = r.strain[k];
     const auto [batch, lane] = I.cell_lane[index];
     if (I.any_plastic() && I.lane_is_plastic(batch, lane)) {
       // The nearest Gauss point: per axis the nearest of the n1 points, x running fastest.
@@ -142,7 +173,8 @@ std::vector<FarField::PointSample> FarField::sample(std::span<const double> poin
       for (int d = dim - 1; d >= 0; --d) {
         unsigned best = 0;
         for (unsigned k = 1; k < n1; ++k)
-          if (std::abs(gauss.point(k)[0] - unit[d]) < std::abs(gauss.point(best)[0] - unit[d])) best = k;
+          if (std::abs(gauss.point(k)[0] - unit[d]) < std::abs(gauss.point(best)[0] - unit[d]))
+            best = k;
         q = q * n1 + best;
       }
       const double* st = I.state(batch, q, lane);
@@ -184,7 +216,8 @@ std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
     std::erase_if(colour, [&](unsigned cell) {
       for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
         if (!I.lane_removed[Impl::W * cell + lane]) return false;
-      if (!I.batch_stretch.empty()) I.batch_stretch[cell] = 1.0;  // what its kept cells would give: none
+      if (!I.batch_stretch.empty())
+        I.batch_stretch[cell] = 1.0;  // what its kept cells would give: none
       return true;
     });
   I.lump_mass();
@@ -194,14 +227,20 @@ std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
   return newly;
 }
 
-std::size_t FarField::removed_cell_count() const { return impl_->removed_cells; }
+std::size_t FarField::removed_cell_count() const {
+  return impl_->removed_cells;
+}
 std::size_t FarField::evaluated_batch_count() const {
   std::size_t n = 0;
   for (const auto& colour : impl_->colours) n += colour.size();
   return n;
 }
-bool FarField::plastic() const { return impl_->any_plastic(); }
-bool FarField::finite_strain() const { return impl_->spec.finite_strain; }
+bool FarField::plastic() const {
+  return impl_->any_plastic();
+}
+bool FarField::finite_strain() const {
+  return impl_->spec.finite_strain;
+}
 
 namespace {
 // The largest accumulated plastic strain (state slot 6) over the quadrature points of the plastic
@@ -212,7 +251,9 @@ double max_accumulated(const Impl& I, bool core) {
   if (!I.any_plastic()) return m;
   for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
     for (unsigned lane = 0; lane < Impl::W; ++lane) {
-      if (!I.lane_is_plastic(cell, lane) || I.lane_layer_spec(cell, lane)->core_yield.has_value() != core) continue;
+      if (!I.lane_is_plastic(cell, lane) ||
+          I.lane_layer_spec(cell, lane)->core_yield.has_value() != core)
+        continue;
       for (unsigned q = 0; q < I.n_q; ++q) m = std::max(m, I.state(cell, q, lane)[6]);
     }
   return m;
@@ -226,7 +267,9 @@ double failed_volume(const Impl& I, bool core) {
   double v = 0.0;
   for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
     for (unsigned lane = 0; lane < Impl::W; ++lane) {
-      if (!I.lane_is_plastic(cell, lane) || I.lane_layer_spec(cell, lane)->core_yield.has_value() != core) continue;
+      if (!I.lane_is_plastic(cell, lane) ||
+          I.lane_layer_spec(cell, lane)->core_yield.has_value() != core)
+        continue;
       unsigned failed = 0;
       for (unsigned q = 0; q < I.n_q; ++q) failed += I.state(cell, q, lane)[7] >= 1.0;
       v += I.matrix_free.get_cell_iterator(cell, lane)->measure() * failed / I.n_q;
@@ -235,8 +278,12 @@ double failed_volume(const Impl& I, bool core) {
 }
 }  // namespace
 
-double FarField::max_equivalent_plastic_strain() const { return max_accumulated(*impl_, false); }
-double FarField::max_core_plastic_strain() const { return max_accumulated(*impl_, true); }
+double FarField::max_equivalent_plastic_strain() const {
+  return max_accumulated(*impl_, false);
+}
+double FarField::max_core_plastic_strain() const {
+  return max_accumulated(*impl_, true);
+}
 std::vector<double> FarField::damaged_cell_centres(double damage) const {
   const auto& I = *impl_;
   std::vector<double> centres;
@@ -254,12 +301,17 @@ std::vector<double> FarField::damaged_cell_centres(double damage) const {
   return centres;
 }
 
-double FarField::core_failed_volume() const { return failed_volume(*impl_, true); }
-double FarField::facesheet_failed_volume() const { return failed_volume(*impl_, false); }
+double FarField::core_failed_volume() const {
+  return failed_volume(*impl_, true);
+}
+double FarField::facesheet_failed_volume() const {
+  return failed_volume(*impl_, false);
+}
 
 std::vector<std::pair<std::string, std::span<double>>> FarField::plastic_state() {
   if (!impl_->any_plastic()) return {};
-  return {{"far_field_plastic_state", impl_->plastic}, {"far_field_plastic_work", {&impl_->plastic_work, 1}}};
+  return {{"far_field_plastic_state", impl_->plastic},
+          {"far_field_plastic_work", {&impl_->plastic_work, 1}}};
 }
 
 std::array<double, 3> FarField::momentum() const {
@@ -272,13 +324,13 @@ std::array<double, 3> FarField::momentum() const {
 std::size_t FarField::bytes() const {
   const auto& I = *impl_;
   return I.triangulation.memory_consumption() + I.dof_handler.memory_consumption() +
-         I.matrix_free.memory_consumption() +
-         4 * I.u.memory_consumption() + I.positions.size() * sizeof(double) +
+         I.matrix_free.memory_consumption() + 4 * I.u.memory_consumption() +
+         I.positions.size() * sizeof(double) +
          I.mass.size() * (sizeof(double) + sizeof(int) + sizeof(unsigned)) +
          I.batch_stiffness.size() * sizeof(std::array<VA, 9>) +
          (I.plastic.size() + I.batch_stretch.size()) * sizeof(double) +
-         (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int) +
-         I.lane_removed.size() + I.cell_removed.size();
+         (I.lane_layer.size() + I.plastic_slot.size()) * sizeof(int) + I.lane_removed.size() +
+         I.cell_removed.size();
 }
 
 void FarField::write_vtu(const std::string& path) const {
@@ -291,8 +343,10 @@ void FarField::write_vtu(const std::string& path) const {
     });
   const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector(
       dim, DataComponentInterpretation::component_is_part_of_vector);
-  out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data, vector);
-  out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data, vector);
+  out.add_data_vector(I.u, std::vector<std::string>(dim, "displacement"),
+                      DataOut<dim>::type_dof_data, vector);
+  out.add_data_vector(I.v, std::vector<std::string>(dim, "velocity"), DataOut<dim>::type_dof_data,
+                      vector);
   // Per cell the largest value of state slot `k` at its quadrature points (0 in elastic cells;
   // with `core`, only the cells that are (true) or are not (false) a yielding core's).
   auto cell_max = [&](int k, std::optional<bool> core = std::nullopt) {
@@ -334,17 +388,20 @@ void FarField::write_vtu(const std::string& path) const {
   out.write_vtu(file);
 }
 
-void FarField::write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries) {
+void FarField::write_pvd(const std::string& path,
+                         const std::vector<std::pair<double, std::string>>& entries) {
   // Written here rather than by DataOutBase::write_pvd_record, which stamps the date and time
   // into the file: the same run must give the same bytes.
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
-  file << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" ByteOrder=\"LittleEndian\">\n"
+  file << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+          "ByteOrder=\"LittleEndian\">\n"
           "  <Collection>\n";
   char time[32];
   for (const auto& [t, name] : entries) {
     std::snprintf(time, sizeof time, "%.17g", t);
-    file << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << name << "\"/>\n";
+    file << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << name
+         << "\"/>\n";
   }
   file << "  </Collection>\n</VTKFile>\n";
 }

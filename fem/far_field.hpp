@@ -2,14 +2,16 @@
 // The finite-element far field of a panel: a layered mesh of hexahedra (each facesheet one or
 // two elements through its thickness, the core a homogenised orthotropic solid), total
 // Lagrangian (every quantity refers to the undeformed mesh), optionally J2 plasticity in the
-// isotropic layers (fem/j2_plasticity.hpp), torn where their damage reaches 1 in failing ones, and capped out-of-plane stresses in a yielding core,
-// dropped where its walls tear in a failing one (fem/core_yield.hpp), explicit central
-// differences with a lumped mass, and matrix-free forces (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header:
-// callers see nodes as plain arrays.
+// isotropic layers (fem/j2_plasticity.hpp), torn where their damage reaches 1 in failing ones, and
+// capped out-of-plane stresses in a yielding core, dropped where its walls tear in a failing one
+// (fem/core_yield.hpp), explicit central differences with a lumped mass, and matrix-free forces
+// (deal.II MatrixFree / FEEvaluation). deal.II stays behind this header: callers see nodes as plain
+// arrays.
 //
 // Kinematics, with H = grad_X u the displacement gradient on the undeformed mesh:
 //   small strain   eps = (H + H^T)/2,            sigma = C : eps,   f_a = -int sigma . grad N_a dV
-//   finite strain  E = (H + H^T + H^T H)/2,      S = C : E,         f_a = -int (I + H) S . grad N_a dV
+//   finite strain  E = (H + H^T + H^T H)/2,      S = C : E,         f_a = -int (I + H) S . grad N_a
+//   dV
 // The second is the orthotropic Saint Venant-Kirchhoff solid: S the second Piola-Kirchhoff stress,
 // P = F S the first, so a rigid rotation of any size gives no force and no energy, and the strain
 // energy 1/2 int E : C : E dV is exact (hyperelastic). With J2 it is the additive split
@@ -45,14 +47,14 @@ struct Layer {
   int elements = 1;                 // through the thickness
   Orthotropic elasticity;
   double density = 0;  // kg/m^3
-  // J2 plasticity with this hardening curve (its A, B, n, and C with `strain_rate`; thermal factor 1), for an
-  // isotropic layer only; none: the layer stays elastic and keeps no plastic state.
+  // J2 plasticity with this hardening curve (its A, B, n, and C with `strain_rate`; thermal factor
+  // 1), for an isotropic layer only; none: the layer stays elastic and keeps no plastic state.
   std::optional<materials::JohnsonCookStrength> plasticity;
   // A honeycomb core's out-of-plane normal and transverse shear stresses capped where its walls
   // yield (fem/core_yield.hpp); none: elastic. A layer takes this or `plasticity`, not both.
   std::optional<CoreYield> core_yield;
-  // With `plasticity`: the layer tears where this Johnson-Cook damage reaches 1 (fem/j2_plasticity.hpp);
-  // none: it yields without limit.
+  // With `plasticity`: the layer tears where this Johnson-Cook damage reaches 1
+  // (fem/j2_plasticity.hpp); none: it yields without limit.
   std::optional<materials::JohnsonCookDamage> failure;
   // With `plasticity`: the yield stress takes eq. (1)'s rate factor at each quadrature point's
   // equivalent deviatoric strain rate, the change of its strain since the last force evaluation
@@ -62,14 +64,15 @@ struct Layer {
 };
 
 struct LayeredMesh {
-  std::array<double, 2> lower{};  // x, y of the mesh's lower corner
+  std::array<double, 2> lower{};         // x, y of the mesh's lower corner
   std::vector<double> x_steps, y_steps;  // element widths along x and y (m), from `lower`
   std::vector<Layer> layers;             // bottom to top, each starting where the last ends
   // Elements whose centre lies inside this in-plane box (x0, y0, x1, y1) are left out: the
   // impact zone, where the material points are.
   std::optional<std::array<double, 4>> hole;
   int degree = 2;  // 1 (trilinear) or 2 (triquadratic)
-  bool finite_strain = false;  // Green-Lagrange strain and P = F S; false: linearised (small strain)
+  bool finite_strain =
+      false;  // Green-Lagrange strain and P = F S; false: linearised (small strain)
 };
 
 // Element widths covering [a, b]: `fine` in [fine_lower, fine_upper] (which must be whole
@@ -200,7 +203,8 @@ class FarField {
   // `facesheet_damage` with failing facesheets).
   void write_vtu(const std::string& path) const;
   // A ParaView collection (.pvd) of VTU files: (time, file relative to the .pvd) per entry.
-  static void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);
+  static void write_pvd(const std::string& path,
+                        const std::vector<std::pair<double, std::string>>& entries);
 
  private:
   struct Impl;

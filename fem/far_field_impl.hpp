@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -74,7 +74,6 @@ inline bool centre_inside(double x, double y, const std::array<double, 4>& box) 
 
 using namespace detail;
 
-
 struct FarField::Impl {
   LayeredMesh spec;
   Triangulation<dim> triangulation;
@@ -132,10 +131,12 @@ struct FarField::Impl {
     return l >= 0 ? &spec.layers[l] : nullptr;
   }
   double* state(unsigned cell, unsigned q, unsigned lane) {
-    return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
+    return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) *
+                    state_size];
   }
   const double* state(unsigned cell, unsigned q, unsigned lane) const {
-    return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) * state_size];
+    return &plastic[((static_cast<std::size_t>(plastic_slot[cell]) * n_q + q) * W + lane) *
+                    state_size];
   }
 
   // The strain of the displacement gradient H: (H + H^T)/2, plus H^T H / 2 (Green-Lagrange) with
@@ -168,7 +169,8 @@ struct FarField::Impl {
 
   // The stress C : (E - E_p) of a plastic batch's lanes returned to the yield surface, their state
   // and plastic work (into batch_sum) committed.
-  void return_to_yield(unsigned cell, unsigned q, VA jxw, const Tensor<2, dim, VA>& E, Tensor<2, dim, VA>& sigma) {
+  void return_to_yield(unsigned cell, unsigned q, VA jxw, const Tensor<2, dim, VA>& E,
+                       Tensor<2, dim, VA>& sigma) {
     const auto& C = batch_stiffness[cell];
     for (unsigned lane = 0; lane < W; ++lane) {
       if (!lane_is_plastic(cell, lane)) continue;
@@ -184,8 +186,10 @@ struct FarField::Impl {
         Sym old;
         std::copy(st, st + 6, old.begin());
         const bool failing = L.core_yield->failure.has_value();
-        const CoreYieldUpdate r = core_yield_return(trial, old, st[6], failing ? st[7] : 0.0, Cl, *L.core_yield);
-        stress = r.stress, plastic_strain = r.plastic_strain, accumulated = r.accumulated, work = r.plastic_work;
+        const CoreYieldUpdate r =
+            core_yield_return(trial, old, st[6], failing ? st[7] : 0.0, Cl, *L.core_yield);
+        stress = r.stress, plastic_strain = r.plastic_strain, accumulated = r.accumulated,
+        work = r.plastic_work;
         if (failing) st[7] = r.damage;
       } else {
         J2State old;
@@ -205,10 +209,12 @@ struct FarField::Impl {
           }
           if (rate_dt > 0.0) rate = {equivalent_strain_rate(de, rate_dt), rate_dt};
         }
-        const J2Update r = L.failure ? j2_return(trial, old, mu, (C[0][lane] + 2.0 * C[3][lane]) / 3.0,
-                                                 *L.plasticity, *L.failure, rate)
-                                     : j2_return(trial, old, mu, *L.plasticity, rate);
-        stress = r.stress, plastic_strain = r.state.plastic_strain, accumulated = r.state.alpha, work = r.plastic_work;
+        const J2Update r = L.failure
+                               ? j2_return(trial, old, mu, (C[0][lane] + 2.0 * C[3][lane]) / 3.0,
+                                           *L.plasticity, *L.failure, rate)
+                               : j2_return(trial, old, mu, *L.plasticity, rate);
+        stress = r.stress, plastic_strain = r.state.plastic_strain, accumulated = r.state.alpha,
+        work = r.plastic_work;
         if (L.failure) st[7] = r.state.damage;
       }
       sigma[0][0][lane] = stress[0];

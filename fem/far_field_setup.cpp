@@ -9,11 +9,13 @@ std::vector<double> graded_steps(double a, double b, double fine_lower, double f
                                  double fine, double ratio, double coarse, int keep) {
   if (!(a <= fine_lower && fine_lower <= fine_upper && fine_upper <= b) || !(fine > 0) ||
       !(ratio >= 1.0) || !(coarse >= fine))
-    throw std::invalid_argument("graded_steps: need a <= fine_lower <= fine_upper <= b, fine > 0, "
-                                "ratio >= 1, coarse >= fine");
+    throw std::invalid_argument(
+        "graded_steps: need a <= fine_lower <= fine_upper <= b, fine > 0, "
+        "ratio >= 1, coarse >= fine");
   const double n_fine = (fine_upper - fine_lower) / fine;
   if (std::abs(n_fine - std::round(n_fine)) > 1e-9 * std::max(1.0, n_fine))
-    throw std::invalid_argument("graded_steps: the fine region is not a whole number of fine steps");
+    throw std::invalid_argument(
+        "graded_steps: the fine region is not a whole number of fine steps");
   // Steps from the fine region outwards over a length L.
   // Steps from the fine region outwards over a length L: grow until they pass L, then shrink the
   // ones beyond the kept steps (or the last step, if all are kept) so they end exactly at L and
@@ -54,9 +56,11 @@ void FarField::Impl::build_mesh() {
   for (std::size_t l = 0; l < spec.layers.size(); ++l) {
     const Layer& L = spec.layers[l];
     if (!(L.z_upper > L.z_lower) || L.elements < 1 || !(L.density > 0))
-      throw std::invalid_argument("far field: layer '" + L.name + "' has no thickness, elements or density");
+      throw std::invalid_argument("far field: layer '" + L.name +
+                                  "' has no thickness, elements or density");
     if (l > 0 && std::abs(L.z_lower - spec.layers[l - 1].z_upper) > 1e-12)
-      throw std::invalid_argument("far field: layer '" + L.name + "' does not start where the one below ends");
+      throw std::invalid_argument("far field: layer '" + L.name +
+                                  "' does not start where the one below ends");
     for (int e = 0; e < L.elements; ++e) {
       z_steps.push_back((L.z_upper - L.z_lower) / L.elements);
       z_layer.push_back(static_cast<types::material_id>(l));
@@ -64,16 +68,22 @@ void FarField::Impl::build_mesh() {
     layer_stiffness.push_back(stiffness(L.elasticity));
     const auto& C = layer_stiffness.back();
     auto near = [&](double a, double b) { return std::abs(a - b) <= 1e-9 * C[0]; };
-    const bool isotropic = near(C[0], C[1]) && near(C[0], C[2]) && near(C[3], C[4]) && near(C[3], C[5]) &&
-                           near(C[6], C[8]) && near(C[7], C[8]) && near(2.0 * C[8], C[0] - C[3]);
+    const bool isotropic = near(C[0], C[1]) && near(C[0], C[2]) && near(C[3], C[4]) &&
+                           near(C[3], C[5]) && near(C[6], C[8]) && near(C[7], C[8]) &&
+                           near(2.0 * C[8], C[0] - C[3]);
     if (L.plasticity && !isotropic)
-      throw std::invalid_argument("far field: layer '" + L.name + "' is plastic but not isotropic (J2 needs an isotropic layer)");
+      throw std::invalid_argument("far field: layer '" + L.name +
+                                  "' is plastic but not isotropic (J2 needs an isotropic layer)");
     if (L.plasticity && L.core_yield)
-      throw std::invalid_argument("far field: layer '" + L.name + "' names both J2 plasticity and core yield");
+      throw std::invalid_argument("far field: layer '" + L.name +
+                                  "' names both J2 plasticity and core yield");
     if (L.strain_rate && !L.plasticity)
-      throw std::invalid_argument("far field: layer '" + L.name + "' takes the strain rate but has no J2 plasticity");
+      throw std::invalid_argument("far field: layer '" + L.name +
+                                  "' takes the strain rate but has no J2 plasticity");
     if (L.failure && !L.plasticity)
-      throw std::invalid_argument("far field: layer '" + L.name + "' names failure without J2 plasticity (its damage grows with eps_p)");
+      throw std::invalid_argument(
+          "far field: layer '" + L.name +
+          "' names failure without J2 plasticity (its damage grows with eps_p)");
   }
   Table<dim, types::material_id> ids(spec.x_steps.size(), spec.y_steps.size(), z_steps.size());
   double x = spec.lower[0];
@@ -273,7 +283,8 @@ double FarField::Impl::element_bound_time_step() const {
   double lambda_max = 0.0;
   for (const auto& cell : dof_handler.active_cell_iterators()) {
     const Tensor<1, dim> extent = cell->vertex(7) - cell->vertex(0);
-    const std::array<long long, 4> key{std::llround(extent[0] * 1e12), std::llround(extent[1] * 1e12),
+    const std::array<long long, 4> key{std::llround(extent[0] * 1e12),
+                                       std::llround(extent[1] * 1e12),
                                        std::llround(extent[2] * 1e12), cell->material_id()};
     if (seen.count(key)) continue;
     const auto& C = layer_stiffness[cell->material_id()];
@@ -300,8 +311,9 @@ double FarField::Impl::element_bound_time_step() const {
                 lump.JxW(q);
     const Eigen::VectorXd s = M.cwiseSqrt().cwiseInverse();
     const Eigen::MatrixXd A = s.asDiagonal() * K * s.asDiagonal();
-    const double lambda =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    const double lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
+                              .eigenvalues()
+                              .maxCoeff();
     seen[key] = lambda;
     lambda_max = std::max(lambda_max, lambda);
   }

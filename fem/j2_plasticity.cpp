@@ -13,13 +13,14 @@ double equivalent_strain_rate(const Sym& de, double dt) {
   return std::sqrt(2.0 / 3.0 * dd) / dt;
 }
 
-J2Update j2_return(const Sym& trial, const J2State& old, double mu, const materials::JohnsonCookStrength& hardening,
-                   const StrainRate& rate) {
+J2Update j2_return(const Sym& trial, const J2State& old, double mu,
+                   const materials::JohnsonCookStrength& hardening, const StrainRate& rate) {
   J2Update r{trial, old, 0.0};
   const double p = (trial[0] + trial[1] + trial[2]) / 3.0;
   Sym s = trial;
   for (int i = 0; i < 3; ++i) s[i] -= p;
-  const double ss = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+  const double ss =
+      s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
   const double q_trial = std::sqrt(1.5 * ss);
   const double k = rate.dt > 0.0 ? hardening.rate_factor(rate.equivalent) : 1.0;
   const double dgamma = materials::radial_return(hardening, q_trial, mu, old.alpha, k, 1.0);
@@ -59,7 +60,8 @@ void tear(J2Update& r, double mu, double K, bool tearing) {
 
 }  // namespace
 
-J2Update j2_return(const Sym& trial, const J2State& old, double mu, double K, const materials::JohnsonCookStrength& hardening,
+J2Update j2_return(const Sym& trial, const J2State& old, double mu, double K,
+                   const materials::JohnsonCookStrength& hardening,
                    const materials::JohnsonCookDamage& damage, const StrainRate& rate) {
   if (old.damage >= 1.0) {  // torn before this step
     J2Update r{trial, old, 0.0};

@@ -1,9 +1,9 @@
 #pragma once
 // J2 (von Mises) plasticity of the far field's facesheets at a quadrature point. The strain (the
 // small strain, or with finite kinematics the Green-Lagrange strain, whose work conjugate S then
-// takes sigma's place) splits additively, eps = eps_e + eps_p; sigma = lambda tr(eps_e) I + 2 mu eps_e; the
-// yield stress follows the Johnson-Cook hardening curve of the facesheet's material at room
-// temperature (the paper's eq. 1 with its thermal factor 1):
+// takes sigma's place) splits additively, eps = eps_e + eps_p; sigma = lambda tr(eps_e) I + 2 mu
+// eps_e; the yield stress follows the Johnson-Cook hardening curve of the facesheet's material at
+// room temperature (the paper's eq. 1 with its thermal factor 1):
 //   sigma_y(alpha) = (A + B alpha^n) k,   k = 1 + C ln(max(epsdot / epsdot_0, 1)),
 // with the rate factor k frozen over the step as the material points freeze it
 // (materials/johnson_cook.hpp). k = 1 (the reference rate) unless the far field is asked for
@@ -23,7 +23,8 @@
 // material, the paper's eqs. (2)-(3) with the thermal factor at 1 (as the hardening) and the rate
 // factor (1 + D4 ln epsdot_p*) of the step's plastic strain rate dgamma / dt, as the points take it
 // (1 at the reference rate):
-//   D += dgamma / eps_f(eta),  eps_f(eta) = (D1 + D2 exp(D3 eta)) (1 + D4 ln epsdot_p*),  eta = p / q_n+1
+//   D += dgamma / eps_f(eta),  eps_f(eta) = (D1 + D2 exp(D3 eta)) (1 + D4 ln epsdot_p*),  eta = p /
+//   q_n+1
 // at the returned stress. Where D reaches 1 the point is torn and keeps, as the MPM's failed
 // points do (mpm/materials/hydro_material.hpp), only the pressure of its volume when compressed
 // below the reference one:
@@ -47,7 +48,7 @@ using Sym = std::array<double, 6>;
 
 struct J2State {
   Sym plastic_strain{};
-  double alpha = 0.0;  // equivalent plastic strain, sqrt(2/3 eps_p : eps_p) for radial flow
+  double alpha = 0.0;   // equivalent plastic strain, sqrt(2/3 eps_p : eps_p) for radial flow
   double damage = 0.0;  // D of failing facesheets (>= 1: torn); 0 otherwise
 };
 
@@ -66,8 +67,8 @@ struct StrainRate {
 };
 
 // `trial_stress`: C (eps - eps_p,n) of the isotropic material with shear modulus mu.
-J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, const materials::JohnsonCookStrength& hardening,
-                   const StrainRate& rate = {});
+J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu,
+                   const materials::JohnsonCookStrength& hardening, const StrainRate& rate = {});
 
 // The same for failing facesheets, with bulk modulus K and Johnson-Cook damage `damage`.
 J2Update j2_return(const Sym& trial_stress, const J2State& old, double mu, double K,

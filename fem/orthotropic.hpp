@@ -39,7 +39,8 @@ Orthotropic isotropic(double youngs_modulus, double poisson_ratio);
 // two inclined walls at 30 degrees to x):
 //   across the ribbon (xz): the ribbon walls carry no shear flow in either bound, so
 //                 G13 = G_s t/D, as for single walls;
-//   along the ribbon (yz): unit displacement (upper) G_s (2t + t/2) / (3/2 sqrt(3) l) = 5/3 G_s t/D,
+//   along the ribbon (yz): unit displacement (upper) G_s (2t + t/2) / (3/2 sqrt(3) l) = 5/3 G_s
+//   t/D,
 //                 unit load (lower; the ribbon wall's flow splits in two at each joint)
 //                 G_s (3/2 sqrt(3) l^2) / ((sqrt(3) l)^2 (l/2t + l/2t)) = 3/2 G_s t/D;
 //                 we take their mean, G23 = 19/12 G_s t/D (each bound within 5.3% of it).
@@ -50,7 +51,8 @@ Orthotropic honeycomb_core(double wall_youngs_modulus, double wall_poisson_ratio
 // rho*/rho_s of regular hexagons, single or double walls (the same closed form as geometry/'s):
 // single (2t/D)(1 - t/(2D)), double (8t/(3D))(1 - t/(2D)) (1 minus the cell's interior, shrunk by
 // half a wall, or a whole one on the two ribbon sides, over its (sqrt(3)/2) D^2).
-double honeycomb_core_solidity(double cell_diameter, double wall_thickness, bool double_walls = false);
+double honeycomb_core_solidity(double cell_diameter, double wall_thickness,
+                               bool double_walls = false);
 
 // The stiffness C (sigma = C eps, Voigt order xx, yy, zz, yz, xz, xy with engineering shear
 // strains) of an orthotropic solid in its axes: the nine independent entries

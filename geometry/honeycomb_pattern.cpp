@@ -203,7 +203,8 @@ Point2 HexPattern::offset_from_center(const Point2& p) const {
 
 std::array<double, 3> HexPattern::side_distances(const Point2& p) const {
   const Point2 d = offset_from_center(p);
-  return {std::fabs(d[0]), std::fabs(0.5 * d[0] + kSqrt3 / 2 * d[1]), std::fabs(-0.5 * d[0] + kSqrt3 / 2 * d[1])};
+  return {std::fabs(d[0]), std::fabs(0.5 * d[0] + kSqrt3 / 2 * d[1]),
+          std::fabs(-0.5 * d[0] + kSqrt3 / 2 * d[1])};
 }
 
 bool HexPattern::in_wall(const Point2& p) const {

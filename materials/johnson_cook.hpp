@@ -10,7 +10,7 @@
 namespace hvi::materials {
 
 struct JohnsonCookStrength {
-  double A = 0, B = 0, n = 1, C = 0, m = 1;  // Pa, Pa, -, -, -
+  double A = 0, B = 0, n = 1, C = 0, m = 1;               // Pa, Pa, -, -, -
   double melt_temperature = 0, room_temperature = 293.0;  // K
   double reference_strain_rate = 1.0;                     // 1/s
 
@@ -62,7 +62,10 @@ inline double radial_return(const JohnsonCookStrength& jc, double q_trial, doubl
   if (!(d > lo && d < hi)) d = 0.5 * hi;
   for (int it = 0; it < 60; ++it) {
     const double f = q_trial - 3.0 * G * d - yield(eps_p + d, slope);
-    if (f > 0.0) lo = d; else hi = d;
+    if (f > 0.0)
+      lo = d;
+    else
+      hi = d;
     double next = d + f / (3.0 * G + slope);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // keep Newton inside the bracket
     if (std::fabs(next - d) <= 1e-14 * (eps_p + next) + 1e-300) return next;

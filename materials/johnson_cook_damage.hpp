@@ -19,8 +19,8 @@ struct JohnsonCookDamage {
 
   double failure_strain(double triaxiality, double strain_rate, double homologous_T) const {
     const double rate = std::max(strain_rate / reference_strain_rate, 1.0);
-    const double eps_f =
-        (D1 + D2 * std::exp(D3 * triaxiality)) * (1.0 + D4 * std::log(rate)) * (1.0 + D5 * homologous_T);
+    const double eps_f = (D1 + D2 * std::exp(D3 * triaxiality)) * (1.0 + D4 * std::log(rate)) *
+                         (1.0 + D5 * homologous_T);
     return std::max(eps_f, minimum_failure_strain);
   }
 };

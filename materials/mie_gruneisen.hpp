@@ -14,7 +14,8 @@
 //    debris reached p = -80 rho0 c0^2 and a 440 km/s sound speed);
 //  - Gamma stays Gamma0 (p = Gamma0 rho e, an ideal-gas-like thermal pressure), so that the
 //    energy-pressure coupling dp/de = Gamma rho stays bounded by Gamma0 rho0; with Gamma0 rho0 the
-//    implicit energy update of a particle expanded 250-fold lost positivity and drove e to 2e9 J/kg.
+//    implicit energy update of a particle expanded 250-fold lost positivity and drove e to 2e9
+//    J/kg.
 // Both are continuous with the compression branch at rho0.
 #include <algorithm>
 #include <cmath>
@@ -53,7 +54,9 @@ struct MieGruneisen {
     return hugoniot_pressure(mu) * (1.0 - 0.5 * gamma * mu);
   }
   double energy_coefficient(double rho) const { return gamma0 * std::min(rho, reference_density); }
-  double pressure(double rho, double e) const { return cold_part(rho) + energy_coefficient(rho) * e; }
+  double pressure(double rho, double e) const {
+    return cold_part(rho) + energy_coefficient(rho) * e;
+  }
 
   // What the EOS needs of a density, computed once for the pressure update and the sound speeds
   // of a point: p = cold + B e, and dp/dmu at fixed e but for the expansion branch's e term.
@@ -69,7 +72,8 @@ struct MieGruneisen {
     } else {
       const double gamma = gamma0 / (1.0 + mu);  // Gamma = Gamma0 rho0 / rho
       a.cold = pH * (1.0 - 0.5 * gamma * mu);
-      a.dp_dmu = slope * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) - pH * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
+      a.dp_dmu = slope * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) -
+                 pH * 0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
     }
     return a;
   }
@@ -85,7 +89,9 @@ struct MieGruneisen {
     const double c2 = dp_dmu_e / reference_density + p * a.B / (a.rho * a.rho);
     return std::max(c2, 0.1 * c0 * c0);
   }
-  double bulk_sound_speed_squared(double rho, double p) const { return bulk_sound_speed_squared(at(rho), p); }
+  double bulk_sound_speed_squared(double rho, double p) const {
+    return bulk_sound_speed_squared(at(rho), p);
+  }
 };
 
 }  // namespace hvi::materials

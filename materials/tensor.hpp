@@ -8,6 +8,8 @@ namespace sym {
 inline constexpr int xx = 0, xy = 1, xz = 2, yy = 3, yz = 4, zz = 5;
 }
 
-inline double trace_sym(const double* s) { return s[sym::xx] + s[sym::yy] + s[sym::zz]; }
+inline double trace_sym(const double* s) {
+  return s[sym::xx] + s[sym::yy] + s[sym::zz];
+}
 
 }  // namespace hvi::materials

@@ -5,9 +5,9 @@
 // reaches a constant K. With K written sigma_0^lambda tau the scene gives a time tau, so the
 // damage
 //   D_s = (1 / tau) integral of max(sigma_1 / sigma_0 - 1, 0)^lambda dt
-// fails the material at D_s = 1: a stress held at sigma_1 fails it after tau / (sigma_1 / sigma_0 - 1)^lambda,
-// and a pulse shorter than that does not. As tau goes to 0 it is the instantaneous criterion
-// at sigma_0; a literature K converts as tau = K / sigma_0^lambda.
+// fails the material at D_s = 1: a stress held at sigma_1 fails it after tau / (sigma_1 / sigma_0 -
+// 1)^lambda, and a pulse shorter than that does not. As tau goes to 0 it is the instantaneous
+// criterion at sigma_0; a literature K converts as tau = K / sigma_0^lambda.
 #include <cmath>
 
 namespace hvi::materials {

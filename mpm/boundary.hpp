@@ -16,8 +16,8 @@ namespace hvi::mpm {
 enum class BoundaryType { fixed, symmetry };
 
 struct GridBoundary {
-  int axis = 0;           // 0, 1, 2 = x, y, z
-  int plane = 0;          // global node index of the plane along `axis`
+  int axis = 0;               // 0, 1, 2 = x, y, z
+  int plane = 0;              // global node index of the plane along `axis`
   bool outside_below = true;  // true: nodes with index <= plane are constrained (material above)
   BoundaryType type = BoundaryType::symmetry;
 };

@@ -37,7 +37,8 @@ void owners_meeting(const ParticleBins& bins, const SparseGrid& grid, const Spar
 
 void BodyContact::compute_normals(const Particles& P, const ParticleBins& bins0, SparseGrid& grid0,
                                   const TransferContext& context) {
-  // The impactor's field is small, the panel's large: each scatters only the blocks where they meet.
+  // The impactor's field is small, the panel's large: each scatters only the blocks where they
+  // meet.
   owners_meeting(bins0, grid0, grid_, meeting0_);
   owners_meeting(bins_, grid_, grid0, meeting1_);
   outward_normals(P, bins0, grid0, context, normal0_, &meeting0_);
@@ -49,7 +50,9 @@ namespace {
 // The nodal velocity `which` of node n, and where a correction of it goes.
 void velocity(const GridNode& n, NodalVelocity which, double* v) {
   for (int d = 0; d < 3; ++d)
-    v[d] = which == NodalVelocity::start ? n.p[d] : which == NodalVelocity::end ? n.p[d] + n.f[d] : n.q[d];
+    v[d] = which == NodalVelocity::start ? n.p[d]
+           : which == NodalVelocity::end ? n.p[d] + n.f[d]
+                                         : n.q[d];
 }
 GridNode::Vector corrected(const GridNode& n, NodalVelocity which) {
   return which == NodalVelocity::start ? n.p : which == NodalVelocity::end ? n.f : n.q;
@@ -119,7 +122,8 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
         c0[d] -= (m1 / M) * dw;
         c1[d] += (m0 / M) * dw;
       }
-      // Friction heat: the friction impulse (m0 m1 / M) dw_t times the slip it leaves, |w_t| - dw_t.
+      // Friction heat: the friction impulse (m0 m1 / M) dw_t times the slip it leaves, |w_t| -
+      // dw_t.
       if (which == NodalVelocity::end) work += (m0 * m1 / M) * t_change * (t_length - t_change);
     }
     block_work_[static_cast<std::size_t>(b)] = work;
@@ -130,8 +134,8 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
 }
 
 std::size_t BodyContact::bytes() const {
-  return grid_.bytes() + bins_.bytes() + field_.capacity() + in_contact_.capacity() + meeting0_.capacity() +
-         meeting1_.capacity() +
+  return grid_.bytes() + bins_.bytes() + field_.capacity() + in_contact_.capacity() +
+         meeting0_.capacity() + meeting1_.capacity() +
          (normal0_.capacity() + normal1_.capacity() + block_work_.capacity()) * sizeof(double);
 }
 

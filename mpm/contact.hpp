@@ -8,7 +8,8 @@
 // (field 0) to the solver's grid. Each field runs the whole step on its own nodes. Where a node
 // carries mass of both fields, the fields meet:
 //   each field's outward normal at node I:           g_k = sum_p m_p grad N_I(x_p)   (p of field k;
-//                                                    ~ -int N_I grad rho, so away from its material)
+//                                                    ~ -int N_I grad rho, so away from its
+//                                                    material)
 //   the normal, pointing from field 1 into field 0:  n = (g1 - g0) / |g1 - g0|
 //   the centre-of-mass velocity:                      v_cm = (m0 v0 + m1 v1) / (m0 + m1)
 //   approaching when                                  (v1 - v0) . n > 0,

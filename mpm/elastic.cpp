@@ -13,14 +13,18 @@ LinearElastic::LinearElastic(std::string name, double density, double youngs_mod
                              double poisson_ratio)
     : Material(std::move(name)),
       density_(density),
-      lambda_(youngs_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio))),
+      lambda_(youngs_modulus * poisson_ratio /
+              ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio))),
       mu_(youngs_modulus / (2.0 * (1.0 + poisson_ratio))) {}
 
-double LinearElastic::p_wave_speed(double rho) const { return std::sqrt((lambda_ + 2.0 * mu_) / rho); }
+double LinearElastic::p_wave_speed(double rho) const {
+  return std::sqrt((lambda_ + 2.0 * mu_) / rho);
+}
 
 double LinearElastic::max_signal_speed(const Particles& particles, ParticleRange range) const {
   double result = 0.0;
-  const auto begin = static_cast<std::int64_t>(range.begin), end = static_cast<std::int64_t>(range.end);
+  const auto begin = static_cast<std::int64_t>(range.begin),
+             end = static_cast<std::int64_t>(range.end);
 #pragma omp parallel for reduction(max : result) schedule(static)
   for (std::int64_t p = begin; p < end; ++p) {
     const double rho = particles.mass[p] / particles.volume[p];
@@ -36,7 +40,8 @@ StressUpdate LinearElastic::update_stress(Particles& particles, ParticleRange ra
   const double dt = context.dt;
   double max_signal = 0.0;
   std::int64_t bad = INT64_MAX;
-  const auto begin = static_cast<std::int64_t>(range.begin), end = static_cast<std::int64_t>(range.end);
+  const auto begin = static_cast<std::int64_t>(range.begin),
+             end = static_cast<std::int64_t>(range.end);
 #pragma omp parallel for reduction(max : max_signal) reduction(min : bad) schedule(static)
   for (std::int64_t p = begin; p < end; ++p) {
     const double* L = &particles.velocity_gradient[9 * p];
@@ -60,7 +65,8 @@ StressUpdate LinearElastic::update_stress(Particles& particles, ParticleRange ra
     particles.internal_energy[p] += dt * contract_sym(s_mid, D) / rho_mid;
     for (int c = 0; c < 6; ++c) s[c] = s_new[c];
 
-    if (!(V.after > 0.0) || !std::isfinite(s_new[0] + s_new[1] + s_new[2] + s_new[3] + s_new[4] + s_new[5]))
+    if (!(V.after > 0.0) ||
+        !std::isfinite(s_new[0] + s_new[1] + s_new[2] + s_new[3] + s_new[4] + s_new[5]))
       bad = std::min(bad, p);
     const double rho = particles.mass[p] / V.after;
     max_signal = std::max(max_signal, p_wave_speed(rho) + speed(particles, p));

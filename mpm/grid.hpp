@@ -13,9 +13,9 @@
 namespace hvi::mpm {
 
 struct GridGeometry {
-  Vec3 origin{};                 // position of node (0, 0, 0), the lower corner of the domain
-  double cell_size = 1.0;        // h, m
-  std::array<int, 3> cells{};    // cells per axis; nodes run 0..cells[d]
+  Vec3 origin{};               // position of node (0, 0, 0), the lower corner of the domain
+  double cell_size = 1.0;      // h, m
+  std::array<int, 3> cells{};  // cells per axis; nodes run 0..cells[d]
   Vec3 upper() const;
   // True if x lies in the domain [origin, upper) on every axis.
   bool contains(const double* x) const;
@@ -114,8 +114,8 @@ class SparseGrid {
  private:
   void grow_table();
   GridGeometry geometry_;
-  std::vector<std::uint64_t> keys_;      // block index -> key
-  std::vector<double> values_;           // block-major, block_values per block
+  std::vector<std::uint64_t> keys_;  // block index -> key
+  std::vector<double> values_;       // block-major, block_values per block
   // Open-addressing hash table key -> block index (linear probing, power-of-two capacity).
   std::vector<std::uint64_t> table_keys_;
   std::vector<std::uint32_t> table_values_;

@@ -21,15 +21,15 @@ struct ParticleRange {
 
 struct StressContext {
   double dt = 0.0;
-  double time = 0.0;   // at the start of the step
+  double time = 0.0;  // at the start of the step
   std::int64_t step = 0;
   PhaseTimer* timer = nullptr;  // for materials that time their sub-models
 };
 
 struct StressUpdate {
-  double max_signal_speed = 0.0;  // max over the group of (sound speed + |v|), m/s
-  std::int64_t bad_particle = -1; // lowest index of a particle in an invalid state, or -1
-  const char* problem = nullptr;  // what was invalid ("non-positive volume", "non-finite stress")
+  double max_signal_speed = 0.0;   // max over the group of (sound speed + |v|), m/s
+  std::int64_t bad_particle = -1;  // lowest index of a particle in an invalid state, or -1
+  const char* problem = nullptr;   // what was invalid ("non-positive volume", "non-finite stress")
 };
 
 class Material {

@@ -20,8 +20,8 @@ namespace {
 
 // Key of the block owning the lowest stencil node of each particle.
 template <class Shape>
-void owner_keys(const Particles& particles, const GridGeometry& g, const std::vector<double>* half_width,
-                std::vector<std::uint64_t>& key) {
+void owner_keys(const Particles& particles, const GridGeometry& g,
+                const std::vector<double>* half_width, std::vector<std::uint64_t>& key) {
   const double inv_h = 1.0 / g.cell_size;
   const auto n = static_cast<std::int64_t>(particles.size());
   const double* x = particles.position.data();
@@ -30,7 +30,8 @@ void owner_keys(const Particles& particles, const GridGeometry& g, const std::ve
   for (std::int64_t p = 0; p < n; ++p) {
     int base[3];
     for (int d = 0; d < 3; ++d)
-      base[d] = Shape::lowest((x[3 * p + d] - g.origin[d]) * inv_h, hw ? hw[3 * p + d] * inv_h : 0.0);
+      base[d] =
+          Shape::lowest((x[3 * p + d] - g.origin[d]) * inv_h, hw ? hw[3 * p + d] * inv_h : 0.0);
     key[p] = SparseGrid::key_of_node(base[0], base[1], base[2]);
   }
 }

@@ -23,8 +23,8 @@ struct ParticleBins {
   // Per particle: while binning, the key of its owner block; then the owner block's index, or
   // SparseGrid::none for a particle not binned here.
   std::vector<std::uint64_t> owner;
-  std::vector<std::uint32_t> order;  // particle indices grouped by owner block, stable
-  std::vector<std::uint32_t> offset; // owner block b holds order[offset[b], offset[b+1])
+  std::vector<std::uint32_t> order;   // particle indices grouped by owner block, stable
+  std::vector<std::uint32_t> offset;  // owner block b holds order[offset[b], offset[b+1])
   // Owner block b's blocks at b + (dx, dy, dz), dx, dy, dz in {0, 1}, index dx | dy<<1 | dz<<2.
   std::vector<std::array<std::uint32_t, 8>> neighbours;
   // Group g holds the owner blocks group_owner[group_offset[g], group_offset[g+1]), in order.

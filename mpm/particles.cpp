@@ -9,15 +9,21 @@ namespace hvi::mpm {
 
 int components(FieldKind kind) {
   switch (kind) {
-    case FieldKind::scalar: return 1;
-    case FieldKind::vector: return 3;
-    case FieldKind::tensor: return 9;
-    case FieldKind::sym_tensor: return 6;
+    case FieldKind::scalar:
+      return 1;
+    case FieldKind::vector:
+      return 3;
+    case FieldKind::tensor:
+      return 9;
+    case FieldKind::sym_tensor:
+      return 6;
   }
   return 1;
 }
 
-Particles::Particles() { register_core_fields(); }
+Particles::Particles() {
+  register_core_fields();
+}
 
 void Particles::register_core_fields() {
   real_fields_ = {
@@ -38,10 +44,12 @@ std::vector<double>& Particles::add_field(const std::string& name, FieldKind kin
                                           const std::string& unit, double initial, bool output) {
   for (auto& f : real_fields_) {
     if (f.name != name) continue;
-    if (f.kind != kind) throw std::logic_error("particle field '" + name + "' declared twice with different kinds");
+    if (f.kind != kind)
+      throw std::logic_error("particle field '" + name + "' declared twice with different kinds");
     return *f.data;
   }
-  extra_storage_.push_back(std::make_unique<std::vector<double>>(size() * components(kind), initial));
+  extra_storage_.push_back(
+      std::make_unique<std::vector<double>>(size() * components(kind), initial));
   real_fields_.push_back({name, kind, unit, output, false, extra_storage_.back().get()});
   return *extra_storage_.back();
 }
@@ -98,7 +106,8 @@ void permute(std::vector<T>& v, int nc, std::span<const std::uint32_t> order) {
 }  // namespace
 
 void Particles::reorder(std::span<const std::uint32_t> order) {
-  if (order.size() != size()) throw std::logic_error("Particles::reorder: order has the wrong size");
+  if (order.size() != size())
+    throw std::logic_error("Particles::reorder: order has the wrong size");
   // Field by field in parallel, as erase().
   const auto reals = static_cast<std::int64_t>(real_fields_.size());
   const auto fields = reals + static_cast<std::int64_t>(int_fields_.size());

@@ -20,9 +20,9 @@ int components(FieldKind kind);
 struct RealField {
   std::string name;
   FieldKind kind = FieldKind::scalar;
-  std::string unit;     // SI unit, for output metadata
-  bool output = true;   // written to snapshots
-  bool scratch = false; // recomputed every step: not reordered, not checkpointed, not written
+  std::string unit;      // SI unit, for output metadata
+  bool output = true;    // written to snapshots
+  bool scratch = false;  // recomputed every step: not reordered, not checkpointed, not written
   std::vector<double>* data = nullptr;
 };
 
@@ -40,14 +40,15 @@ class Particles {
 
   std::size_t size() const { return mass.size(); }
 
-  // Core fields. Units SI; tensors row-major, symmetric tensors in Tensor6 order (xx xy xz yy yz zz).
-  std::vector<double> position;              // 3 per particle, m
-  std::vector<double> velocity;              // 3, m/s
-  std::vector<double> mass;                  // kg
-  std::vector<double> volume0;               // reference volume, m^3
-  std::vector<double> volume;                // current volume V = det(F) V0, m^3
-  std::vector<double> stress;                // 6, Cauchy stress, Pa (tension positive)
-  std::vector<double> internal_energy;       // specific internal energy, J/kg
+  // Core fields. Units SI; tensors row-major, symmetric tensors in Tensor6 order (xx xy xz yy yz
+  // zz).
+  std::vector<double> position;         // 3 per particle, m
+  std::vector<double> velocity;         // 3, m/s
+  std::vector<double> mass;             // kg
+  std::vector<double> volume0;          // reference volume, m^3
+  std::vector<double> volume;           // current volume V = det(F) V0, m^3
+  std::vector<double> stress;           // 6, Cauchy stress, Pa (tension positive)
+  std::vector<double> internal_energy;  // specific internal energy, J/kg
   // Scratch, valid within one step only.
   std::vector<double> velocity_gradient;  // 9, 1/s, L_ij = dv_i/dx_j at the start-of-step position
   std::vector<double> grid_velocity;      // 3, m/s: sum_I N_I v_I (positions move with it, MUSL)
@@ -69,8 +70,8 @@ class Particles {
   const std::vector<IntField>& int_fields() const { return int_fields_; }
 
   // Appends one particle at rest, undeformed (volume = volume0), unstressed; returns its index.
-  std::size_t append(const double x[3], double volume_value, double mass_value, std::int64_t body_index,
-                     std::int64_t material_index);
+  std::size_t append(const double x[3], double volume_value, double mass_value,
+                     std::int64_t body_index, std::int64_t material_index);
   // New particles are zero in every field: the caller sets at least position, mass, volume0 and
   // volume (equal to volume0 for an undeformed particle).
   void resize(std::size_t n);

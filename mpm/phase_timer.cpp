@@ -19,7 +19,8 @@ double PhaseTimer::total() const {
 
 std::string PhaseTimer::table() const {
   const double sum = total();
-  std::string out = fmt::format("{:<28} {:>10} {:>7} {:>9}\n", "phase", "seconds", "share", "calls");
+  std::string out =
+      fmt::format("{:<28} {:>10} {:>7} {:>9}\n", "phase", "seconds", "share", "calls");
   for (const auto& e : entries_)
     out += fmt::format("{:<28} {:>10.3f} {:>6.1f}% {:>9}\n", e.name, e.seconds,
                        sum > 0 ? 100.0 * e.seconds / sum : 0.0, e.calls);

@@ -16,7 +16,9 @@ enum class ShapeFunction {
   gimp,    // uGIMP: particle domains keep their initial size
   cpgimp,  // GIMP with axis-aligned domains that stretch with the flow: a_d <- a_d (1 + dt L_dd)
 };
-inline bool is_gimp(ShapeFunction s) { return s != ShapeFunction::linear; }
+inline bool is_gimp(ShapeFunction s) {
+  return s != ShapeFunction::linear;
+}
 
 // Standard MPM hat functions: N = 1 - |s - i| for |s - i| < 1 (the paper's choice, Sec. 2.3).
 struct LinearShape {
@@ -107,4 +109,3 @@ struct GimpShape {
 };
 
 }  // namespace hvi::mpm
-

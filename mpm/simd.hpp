@@ -61,7 +61,6 @@ inline d4 sum4(d4 a, d4 b, d4 c, d4 d) {
 
 }  // namespace hvi::mpm::simd
 
-
 // A kernel built twice, for x86-64-v3 (AVX2) and for the build's own target, the loader picking
 // the one the processor runs (GCC function multi-versioning); `flatten` inlines what it calls, so
 // the whole kernel is compiled for each. Elsewhere the portable build only.

@@ -50,25 +50,29 @@ void Solver::initialise() {
     half_width_ = &particles_.add_field(half_width_field, FieldKind::vector, "m", 0.0, false);
     auto& a = *half_width_;
     for (std::size_t p = 0; p < particles_.size(); ++p) {
-      if (a[3 * p] == 0.0) a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
+      if (a[3 * p] == 0.0)
+        a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
       for (int d = 0; d < 3; ++d)
         if (a[3 * p + d] > 0.5 * geometry_.cell_size * (1.0 + 1e-12))
-          throw SolverError(fmt::format(
-              "GIMP needs particles no larger than a cell: particle {} (body '{}') has size {:.4g} m "
-              "but the cell is {:.4g} m; use more particles per cell",
-              particles_.id[p], body_names_.at(particles_.body[p]), 2 * a[3 * p + d], geometry_.cell_size));
+          throw SolverError(
+              fmt::format("GIMP needs particles no larger than a cell: particle {} (body '{}') has "
+                          "size {:.4g} m "
+                          "but the cell is {:.4g} m; use more particles per cell",
+                          particles_.id[p], body_names_.at(particles_.body[p]), 2 * a[3 * p + d],
+                          geometry_.cell_size));
     }
   }
   for (std::size_t p = 0; p < particles_.size(); ++p)
     if (!geometry_.contains(&particles_.position[3 * p]))
-      throw SolverError(fmt::format("particle {} of body '{}' at ({:.6g}, {:.6g}, {:.6g}) m lies "
-                                    "outside the grid",
-                                    particles_.id[p], body_names_.at(particles_.body[p]),
-                                    particles_.position[3 * p], particles_.position[3 * p + 1],
-                                    particles_.position[3 * p + 2]));
+      throw SolverError(fmt::format(
+          "particle {} of body '{}' at ({:.6g}, {:.6g}, {:.6g}) m lies "
+          "outside the grid",
+          particles_.id[p], body_names_.at(particles_.body[p]), particles_.position[3 * p],
+          particles_.position[3 * p + 1], particles_.position[3 * p + 2]));
   bin_particles();
   sort_by_material_and_block();
-  for (std::size_t m = 0; m < materials_.size(); ++m) materials_[m]->initialise(particles_, ranges_[m]);
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    materials_[m]->initialise(particles_, ranges_[m]);
   double signal = 0.0;
   for (std::size_t m = 0; m < materials_.size(); ++m)
     signal = std::max(signal, materials_[m]->max_signal_speed(particles_, ranges_[m]));
@@ -84,7 +88,8 @@ void Solver::adopt_particles(std::size_t first) {
   if (half_width_) {
     auto& a = *half_width_;
     for (std::size_t p = first; p < n; ++p)
-      if (a[3 * p] == 0.0) a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
+      if (a[3 * p] == 0.0)
+        a[3 * p] = a[3 * p + 1] = a[3 * p + 2] = 0.5 * std::cbrt(particles_.volume0[p]);
   }
   // The new points in runs of one material, one call (one parallel loop) per run: a take-over
   // adopts thousands of points, and a loop per point cost more than the rest of it.
@@ -119,8 +124,7 @@ void Solver::compute_material_ranges() {
   }
   for (std::size_t p = 0; p < particles_.size(); ++p) {
     const auto& r = ranges_[particles_.material[p]];
-    if (p < r.begin || p >= r.end)
-      throw std::logic_error("particles are not grouped by material");
+    if (p < r.begin || p >= r.end) throw std::logic_error("particles are not grouped by material");
   }
 }
 
@@ -151,7 +155,8 @@ void Solver::sort_by_material_and_block() {
 void Solver::step(double max_dt) {
   dt_ = std::min(state_.next_dt, max_dt);
   bin_particles();
-  if (settings_.reorder_interval > 0 && state_.step % settings_.reorder_interval == 0 && state_.step > 0) {
+  if (settings_.reorder_interval > 0 && state_.step % settings_.reorder_interval == 0 &&
+      state_.step > 0) {
     auto t = timer_.scope("sort particles");
     sort_by_material_and_block();
   }
@@ -210,7 +215,8 @@ void Solver::bin_particles() {
   }
   const std::uint8_t* field = contact_->assign_fields(particles_).data();
   mpm::bin_particles(particles_, {settings_.shape, half_width_}, grid_, bins_, extra, field, 0);
-  mpm::bin_particles(particles_, {settings_.shape, half_width_}, contact_->grid(), contact_->bins(), {}, field, 1);
+  mpm::bin_particles(particles_, {settings_.shape, half_width_}, contact_->grid(), contact_->bins(),
+                     {}, field, 1);
 }
 
 void Solver::particles_to_grid(Scatter what) {
@@ -362,10 +368,15 @@ void Solver::remove_escaped_particles() {
     r.kinetic += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     r.internal += m * particles_.internal_energy[p];
     for (int d = 0; d < 3; ++d) r.momentum[d] += m * v[d];
-    removal_events_.push_back({particles_.id[p], particles_.body[p], particles_.material[p],
+    removal_events_.push_back({particles_.id[p],
+                               particles_.body[p],
+                               particles_.material[p],
                                {particles_.position[3 * p], particles_.position[3 * p + 1],
                                 particles_.position[3 * p + 2]},
-                               {v[0], v[1], v[2]}, m, state_.time, state_.step});
+                               {v[0], v[1], v[2]},
+                               m,
+                               state_.time,
+                               state_.step});
   }
   std::vector<std::size_t> sizes;
   for (const auto& range : ranges_) sizes.push_back(range.size());
@@ -376,17 +387,21 @@ void Solver::remove_escaped_particles() {
 
 void Solver::choose_time_step() {
   double dt = settings_.max_time_step;
-  if (max_signal_speed_ > 0.0) dt = std::min(dt, settings_.cfl * geometry_.cell_size / max_signal_speed_);
+  if (max_signal_speed_ > 0.0)
+    dt = std::min(dt, settings_.cfl * geometry_.cell_size / max_signal_speed_);
   for (const auto* c : couplings_) dt = std::min(dt, c->stable_time_step());
   if (!std::isfinite(dt) || dt <= 0.0)
-    throw SolverError(fmt::format("step {}, t = {:.6g} s: no finite time step (max signal speed {:.6g} m/s)",
-                                  state_.step, state_.time, max_signal_speed_));
+    throw SolverError(
+        fmt::format("step {}, t = {:.6g} s: no finite time step (max signal speed {:.6g} m/s)",
+                    state_.step, state_.time, max_signal_speed_));
   if (state_.first_dt == 0.0) state_.first_dt = dt;
   if (dt < settings_.min_time_step_fraction * state_.first_dt && particles_.size() > 0) {
     const std::size_t p = fastest_particle();
-    fail(p, fmt::format("the time step collapsed to {:.3g} s ({:.2g} of the first, {:.3g} s; signal speed {:.4g} m/s): "
+    fail(p, fmt::format("the time step collapsed to {:.3g} s ({:.2g} of the first, {:.3g} s; "
+                        "signal speed {:.4g} m/s): "
                         "the run is unstable; this particle moves fastest, at {:.4g} m/s",
-                        dt, dt / state_.first_dt, state_.first_dt, max_signal_speed_, speed(particles_, p)));
+                        dt, dt / state_.first_dt, state_.first_dt, max_signal_speed_,
+                        speed(particles_, p)));
   }
   state_.next_dt = dt;
 }
@@ -412,10 +427,11 @@ std::vector<RemovalEvent> Solver::take_removal_events() {
 
 void Solver::fail(std::size_t p, const std::string& problem) const {
   const double* x = &particles_.position[3 * p];
-  throw SolverError(fmt::format(
-      "step {}, t = {:.6g} s: particle {} (body '{}', material '{}') at ({:.6g}, {:.6g}, {:.6g}) m: {}",
-      state_.step, state_.time, particles_.id[p], body_names_.at(particles_.body[p]),
-      materials_.at(particles_.material[p])->name(), x[0], x[1], x[2], problem));
+  throw SolverError(
+      fmt::format("step {}, t = {:.6g} s: particle {} (body '{}', material '{}') at ({:.6g}, "
+                  "{:.6g}, {:.6g}) m: {}",
+                  state_.step, state_.time, particles_.id[p], body_names_.at(particles_.body[p]),
+                  materials_.at(particles_.material[p])->name(), x[0], x[1], x[2], problem));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -466,8 +482,8 @@ EnergyReport Solver::energy() const {
 
 std::size_t Solver::bytes() const {
   return particles_.bytes() + grid_.bytes() + bins_.bytes() + stencils_.bytes() +
-         (volumetric_ ? volumetric_->bytes() : 0) +
-         (contact_ ? contact_->bytes() : 0) + (volumetric1_ ? volumetric1_->bytes() : 0);
+         (volumetric_ ? volumetric_->bytes() : 0) + (contact_ ? contact_->bytes() : 0) +
+         (volumetric1_ ? volumetric1_->bytes() : 0);
 }
 
 }  // namespace hvi::mpm

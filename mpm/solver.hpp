@@ -77,11 +77,11 @@ struct EnergyReport {
   double dissipated = 0.0;  // plastic work and viscous heating, J
   double removed = 0.0;     // kinetic + internal energy carried out of the domain, J
   double coupled_kinetic = 0.0, coupled_strain = 0.0;  // held by coupled models (far field), J
-  double contact = 0.0;     // friction heat of contact (contact.hpp), J
+  double contact = 0.0;                                // friction heat of contact (contact.hpp), J
   double total() const {
     return kinetic + internal + dissipated + removed + coupled_kinetic + coupled_strain + contact;
   }
-  Vec3 momentum{};          // of the particles in the domain and the coupled models, kg m/s
+  Vec3 momentum{};  // of the particles in the domain and the coupled models, kg m/s
   Vec3 removed_momentum{};
   double mass = 0.0, removed_mass = 0.0;
 };
@@ -108,8 +108,9 @@ class Solver {
   // spacing / 2 per axis), else they follow from the particle volume.
   static constexpr const char* half_width_field = "gimp_half_width";
 
-  Solver(GridGeometry grid, SolverSettings settings, std::vector<std::unique_ptr<Material>> materials,
-         std::vector<std::string> body_names, std::vector<GridBoundary> boundaries);
+  Solver(GridGeometry grid, SolverSettings settings,
+         std::vector<std::unique_ptr<Material>> materials, std::vector<std::string> body_names,
+         std::vector<GridBoundary> boundaries);
 
   Particles& particles() { return particles_; }
   const Particles& particles() const { return particles_; }
@@ -192,7 +193,7 @@ class Solver {
   SparseGrid grid_;
   ParticleBins bins_;
   std::vector<ParticleRange> ranges_;
-  std::vector<double>* half_width_ = nullptr;  // GIMP only
+  std::vector<double>* half_width_ = nullptr;      // GIMP only
   std::unique_ptr<VolumetricAverage> volumetric_;  // Dilatation::node_average only
   // Contact only: field 1's grid and bins, and its node average.
   std::unique_ptr<BodyContact> contact_;

@@ -196,4 +196,3 @@ inline void scatter_mass_gradient(const PatchStencil<W>& st, double inv_h, doubl
 }
 
 }  // namespace hvi::mpm::kernels
-

@@ -477,7 +477,8 @@ Setup make_setup(const SparseGrid& grid, const TransferContext& c) {
 
 // With GIMP and a StencilCache: read it if it is filled; else, if this pass visits every binned
 // point (`visits_all`), fill it as the pass evaluates (finish_pass then marks it filled).
-Setup make_setup(const Particles& P, const SparseGrid& grid, const TransferContext& c, bool visits_all) {
+Setup make_setup(const Particles& P, const SparseGrid& grid, const TransferContext& c,
+                 bool visits_all) {
   Setup s = make_setup(grid, c);
   if (!c.stencils || c.shape == ShapeFunction::linear) return s;
   if (c.stencils->valid())
@@ -510,8 +511,8 @@ void particles_to_grid(Scatter what, const Particles& particles, const ParticleB
 }
 
 void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
-                  const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
-                  std::vector<double>& out) {
+                  const TransferContext& context, const NodeAverage& average,
+                  std::vector<double>& sums, std::vector<double>& out) {
   const NodeAverageSums na{average, &sums};
   node_average_scatter(particles, bins, grid, context, na);
   node_average_gather(particles, bins, grid, context, na, out);
@@ -528,8 +529,9 @@ void node_average_scatter(const Particles& particles, const ParticleBins& bins, 
   finish_pass(s, context);
 }
 
-void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
-                         const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out) {
+void node_average_gather(const Particles& particles, const ParticleBins& bins,
+                         const SparseGrid& grid, const TransferContext& context,
+                         const NodeAverageSums& sums, std::vector<double>& out) {
   const Setup s = make_setup(particles, grid, context, false);
   out.resize(particles.size());
   PassArgs a = pass_args(Pass::average_gather, particles, bins, const_cast<SparseGrid&>(grid), s);
@@ -564,8 +566,8 @@ void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGri
 }
 
 void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
-                       const TransferContext& context, NodalVelocity which, const NodeAverageSums* dilatation,
-                       std::vector<double>* trace) {
+                       const TransferContext& context, NodalVelocity which,
+                       const NodeAverageSums* dilatation, std::vector<double>* trace) {
   const Setup s = make_setup(particles, grid, context, true);
   PassArgs a = pass_args(Pass::gradient, particles, bins, grid, s);
   a.which = which;

@@ -109,13 +109,14 @@ void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGri
 // Fills out (one value per particle); sums is scratch storage kept between calls. The same as
 // node_average_scatter, then node_average_gather.
 void node_average(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
-                  const TransferContext& context, const NodeAverage& average, std::vector<double>& sums,
-                  std::vector<double>& out);
+                  const TransferContext& context, const NodeAverage& average,
+                  std::vector<double>& sums, std::vector<double>& out);
 void node_average_scatter(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                           const TransferContext& context, const NodeAverageSums& sums);
 // abar_p into out[p] for the binned particles (0 for those that do not count).
-void node_average_gather(const Particles& particles, const ParticleBins& bins, const SparseGrid& grid,
-                         const TransferContext& context, const NodeAverageSums& sums, std::vector<double>& out);
+void node_average_gather(const Particles& particles, const ParticleBins& bins,
+                         const SparseGrid& grid, const TransferContext& context,
+                         const NodeAverageSums& sums, std::vector<double>& out);
 
 // g_I = sum_p m_p grad N_I(x_p), about -int N_I grad rho, the outward normal of the particles'
 // material at node I (contact.hpp): component d of node l of block b at out[(3 b + d) 64 + l].
@@ -137,6 +138,7 @@ enum class NodalVelocity {
 // fills dilatation's sums from them, as node_average_scatter would.
 void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGrid& grid,
                        const TransferContext& context, NodalVelocity which,
-                       const NodeAverageSums* dilatation = nullptr, std::vector<double>* trace = nullptr);
+                       const NodeAverageSums* dilatation = nullptr,
+                       std::vector<double>* trace = nullptr);
 
 }  // namespace hvi::mpm

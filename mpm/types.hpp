@@ -18,8 +18,12 @@ using Sym6 = std::array<double, 6>;
 namespace sym = materials::sym;
 using materials::trace_sym;
 
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 inline double determinant(const double* F) {
   return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
@@ -37,8 +41,8 @@ inline double contract_sym(const double* s, const double* d) {
 inline double von_mises(const double* s) {
   const double p = trace_sym(s) / 3.0;
   const double dxx = s[sym::xx] - p, dyy = s[sym::yy] - p, dzz = s[sym::zz] - p;
-  const double j2 = 0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) +
-                    s[sym::xy] * s[sym::xy] + s[sym::xz] * s[sym::xz] + s[sym::yz] * s[sym::yz];
+  const double j2 = 0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) + s[sym::xy] * s[sym::xy] +
+                    s[sym::xz] * s[sym::xz] + s[sym::yz] * s[sym::yz];
   return std::sqrt(3.0 * j2);
 }
 

@@ -20,8 +20,10 @@ NodeAverageSums VolumetricAverage::averaging(const Particles& P) {
   return a;
 }
 
-const NodeAverageSums& VolumetricAverage::mean_stress_sums(const Particles& P, const ParticleBins& bins,
-                                                           SparseGrid& grid, const TransferContext& context) {
+const NodeAverageSums& VolumetricAverage::mean_stress_sums(const Particles& P,
+                                                           const ParticleBins& bins,
+                                                           SparseGrid& grid,
+                                                           const TransferContext& context) {
   const auto n = static_cast<std::int64_t>(P.size());
   value_.resize(P.size());
 #pragma omp parallel for schedule(static)
@@ -37,12 +39,13 @@ const NodeAverageSums& VolumetricAverage::dilatation_sums(const Particles& P) {
   return current_;
 }
 
-void VolumetricAverage::average_dilatation(Particles& P, const ParticleBins& bins, const SparseGrid& grid,
-                                           const TransferContext& context) {
+void VolumetricAverage::average_dilatation(Particles& P, const ParticleBins& bins,
+                                           const SparseGrid& grid, const TransferContext& context) {
   node_average_gather(P, bins, grid, context, current_, average_);
   double* L = P.velocity_gradient.data();
   const NodeAverage& a = current_.average;
-  // Only the points binned here: with contact, the other field's points are averaged on their own grid.
+  // Only the points binned here: with contact, the other field's points are averaged on their own
+  // grid.
   const auto binned = static_cast<std::int64_t>(bins.order.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < binned; ++k) {

@@ -15,10 +15,10 @@
 // its average through the grid nodes, body by body:
 //   d_I = sum_q N_I(x_q) V_q d_q / sum_q N_I(x_q) V_q   (q intact, of the body of p)
 //   dbar_p = sum_I N_I(x_p) d_I,       L_p <- L_p + (dbar_p - d_p) / 3 1.
-// The operator A (dbar = A d) satisfies V_p A_pq = V_q A_qp, so with the mean stress m = tr sigma / 3
-// averaged the same way, sum_p V_p m_p dbar_p = sum_p V_p mbar_p d_p. The internal force therefore
-// uses mbar: f_I = -sum_p V_p (sigma_p + (mbar_p - m_p) 1) grad N_I(x_p), and the work the grid
-// does on the points is exactly the work they book in their internal energy (tested).
+// The operator A (dbar = A d) satisfies V_p A_pq = V_q A_qp, so with the mean stress m = tr sigma /
+// 3 averaged the same way, sum_p V_p m_p dbar_p = sum_p V_p mbar_p d_p. The internal force
+// therefore uses mbar: f_I = -sum_p V_p (sigma_p + (mbar_p - m_p) 1) grad N_I(x_p), and the work
+// the grid does on the points is exactly the work they book in their internal energy (tested).
 // Failed points (no tension, no shear) are left out of both averages and keep their own d_p:
 // the spray of a hole expanding away must not be averaged into the intact wall beside it. Bodies
 // are averaged apart, so a projectile's shock is not spread into the sheet it strikes.
@@ -40,8 +40,8 @@ class VolumetricAverage {
 
   // Before a scatter of the internal force: the node sums of the mean stress m_p = tr sigma_p / 3,
   // for TransferContext::mean_stress (the scatter gathers mbar_p - m_p from them).
-  const NodeAverageSums& mean_stress_sums(const Particles& particles, const ParticleBins& bins, SparseGrid& grid,
-                                          const TransferContext& context);
+  const NodeAverageSums& mean_stress_sums(const Particles& particles, const ParticleBins& bins,
+                                          SparseGrid& grid, const TransferContext& context);
 
   // For velocity_gradient: where it puts d_p = tr L_p and the node sums of the dilatation.
   const NodeAverageSums& dilatation_sums(const Particles& particles);

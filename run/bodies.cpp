@@ -30,7 +30,6 @@ geometry::HoneycombPanel panel_geometry(const scene::PanelSettings& p) {
 
 namespace {
 
-
 [[noreturn]] void scene_error(const scene::BodySettings& body, const std::string& message) {
   scene::Diagnostic d = body.origin;
   d.message = message;
@@ -86,7 +85,8 @@ std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std:
   return geometry::clip(std::move(solid), {body.clip->lower, body.clip->upper});
 }
 
-std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t b, const geometry::Bounds& box) {
+std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t b,
+                                                 const geometry::Bounds& box) {
   return geometry::clip(uncut_solid(scene, scene.bodies[b]), box);
 }
 

@@ -4,11 +4,11 @@
 // zones that name it. Shared by `hvi check`, `hvi run` and `hvi geometry`.
 #include <memory>
 
-#include "scene/scene.hpp"
 #include "geometry/honeycomb.hpp"
 #include "geometry/point_set.hpp"
 #include "geometry/sampler.hpp"
 #include "geometry/solid.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::driver {
 
@@ -21,7 +21,8 @@ geometry::HoneycombPanel panel_geometry(const scene::PanelSettings& panel);
 std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t body);
 // The body's solid cut to `box` instead of its clip (a hybrid's panel over the ring its MPM zone
 // grows by).
-std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t body, const geometry::Bounds& box);
+std::unique_ptr<geometry::Solid> make_body_solid(const scene::Scene& scene, std::size_t body,
+                                                 const geometry::Bounds& box);
 
 // Lattice spacing (cell size / particles per cell) anchored at the grid origin, the zones of the
 // [[refinement]] entries that apply to the body, and the panel's thin-wall model.

@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include "run/bodies.hpp"
 #include "mpm/elastic.hpp"
 #include "mpm/materials/hydro_material.hpp"
+#include "run/bodies.hpp"
 
 namespace hvi::driver {
 
@@ -41,7 +41,8 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
                     : g.scheme == "usf" ? mpm::UpdateScheme::usf
                                         : mpm::UpdateScheme::musl;
   settings.flip = g.flip;
-  settings.dilatation = g.dilatation == "node-average" ? mpm::Dilatation::node_average : mpm::Dilatation::particle;
+  settings.dilatation =
+      g.dilatation == "node-average" ? mpm::Dilatation::node_average : mpm::Dilatation::particle;
   settings.stencil_cache = g.stencil_cache;
   settings.cfl = g.cfl;
   if (scene.contact) {
@@ -55,15 +56,16 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
 
   std::vector<mpm::GridBoundary> boundaries;
   for (const auto& b : scene.boundaries)
-    boundaries.push_back({b.axis, b.plane, b.lower_face,
-                          b.type == "fixed" ? mpm::BoundaryType::fixed : mpm::BoundaryType::symmetry});
+    boundaries.push_back(
+        {b.axis, b.plane, b.lower_face,
+         b.type == "fixed" ? mpm::BoundaryType::fixed : mpm::BoundaryType::symmetry});
 
   std::vector<std::unique_ptr<mpm::Material>> materials;
   for (const auto& m : scene.materials) materials.push_back(make_material(m));
   std::vector<std::string> body_names;
   for (const auto& b : scene.bodies) body_names.push_back(b.name);
-  return std::make_unique<mpm::Solver>(geometry, settings, std::move(materials), std::move(body_names),
-                                       std::move(boundaries));
+  return std::make_unique<mpm::Solver>(geometry, settings, std::move(materials),
+                                       std::move(body_names), std::move(boundaries));
 }
 
 std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver) {
@@ -78,8 +80,10 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
     // GIMP particle domains: half the sampling spacing per axis (a thin-wall point is wide along
     // its wall and short across it, which V^(1/3) / 2 would not say).
     if (mpm::is_gimp(solver.settings().shape) && points.half_width.size() == 3 * n) {
-      auto& hw = P.add_field(mpm::Solver::half_width_field, mpm::FieldKind::vector, "m", 0.0, false);
-      std::copy(points.half_width.begin(), points.half_width.end(), hw.begin() + 3 * static_cast<std::ptrdiff_t>(first));
+      auto& hw =
+          P.add_field(mpm::Solver::half_width_field, mpm::FieldKind::vector, "m", 0.0, false);
+      std::copy(points.half_width.begin(), points.half_width.end(),
+                hw.begin() + 3 * static_cast<std::ptrdiff_t>(first));
     }
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t p = first + k;

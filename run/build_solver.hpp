@@ -3,8 +3,8 @@
 // material points. This is the one place that knows both geometry/ and mpm/.
 #include <memory>
 
-#include "scene/scene.hpp"
 #include "mpm/solver.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::driver {
 

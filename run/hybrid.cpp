@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
+#include "coupling/panel_far_field.hpp"
 #include "run/bodies.hpp"
 #include "run/build_solver.hpp"
-#include "coupling/panel_far_field.hpp"
 
 namespace hvi::driver {
 
@@ -20,7 +20,8 @@ namespace {
 // `plastic`: the material's Johnson-Cook hardening, for J2 facesheets or a yielding core's walls;
 // `failing`: its Johnson-Cook damage, for failing facesheets or a failing core's walls (the scene
 // checked it has them).
-coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body, bool plastic = false, bool failing = false) {
+coupling::SolidMaterial solid(const scene::Scene& s, std::size_t body, bool plastic = false,
+                              bool failing = false) {
   const auto& m = s.materials[s.bodies[body].material].models;
   return {m.youngs_modulus, m.poisson_ratio, m.density, plastic ? m.johnson_cook : std::nullopt,
           failing ? m.damage : std::nullopt};
@@ -36,15 +37,18 @@ std::size_t panel_body(const scene::Scene& s, std::size_t panel, int part) {
 
 // Components of far-field node x held at zero: the scene's boundary planes (a node on or beyond
 // one takes its condition, as grid nodes do) and clamped outer edges not on such a plane.
-unsigned conditions(const double* x, const scene::Scene& s, const scene::FarFieldSettings& f, double tol) {
+unsigned conditions(const double* x, const scene::Scene& s, const scene::FarFieldSettings& f,
+                    double tol) {
   unsigned fixed = 0;
   bool on_plane[2][2] = {{false, false}, {false, false}};  // [axis][upper side]
   for (const auto& b : s.boundaries) {
-    const bool beyond = b.lower_face ? x[b.axis] <= b.position + tol : x[b.axis] >= b.position - tol;
+    const bool beyond =
+        b.lower_face ? x[b.axis] <= b.position + tol : x[b.axis] >= b.position - tol;
     if (beyond) fixed |= b.type == "fixed" ? 7u : 1u << b.axis;
     if (b.axis < 2)
       for (int side = 0; side < 2; ++side)
-        if (std::abs(f.extent[2 * side + b.axis] - b.position) <= tol) on_plane[b.axis][side] = true;
+        if (std::abs(f.extent[2 * side + b.axis] - b.position) <= tol)
+          on_plane[b.axis][side] = true;
   }
   if (f.clamped_edges)
     for (int d = 0; d < 2; ++d)
@@ -94,7 +98,8 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
   yielding_core_ = f.yielding_core;
   failing_core_ = f.failing_core;
   const mpm::GridGeometry grid = grid_geometry(scene);
-  far_field_ = std::make_unique<fem::FarField>(coupling::panel_far_field_mesh(panel, spec, grid), 1);
+  far_field_ =
+      std::make_unique<fem::FarField>(coupling::panel_far_field_mesh(panel, spec, grid), 1);
   const auto x = far_field_->reference_positions();
   const double tol = 1e-9 * scene.grid.cell_size;
   for (std::size_t a = 0; a < far_field_->node_count(); ++a)
@@ -102,8 +107,8 @@ Hybrid::Hybrid(const scene::Scene& scene, mpm::Solver& solver) : scene_(scene) {
       far_field_->fix(a, c);
       ++fixed_nodes_;
     }
-  coupling_ = std::make_unique<coupling::FarFieldCoupling>(*far_field_, grid, coupling::panel_interface_band(spec, grid),
-                                                           scene.grid.flip, f.safety);
+  coupling_ = std::make_unique<coupling::FarFieldCoupling>(
+      *far_field_, grid, coupling::panel_interface_band(spec, grid), scene.grid.flip, f.safety);
   if (growth_) {
     coupling_->enable_growth();
     solver.particles().add_field(coupling::reference_position_field, mpm::FieldKind::vector, "m");
@@ -118,16 +123,21 @@ void Hybrid::record_reference_positions(mpm::Solver& solver) const {
 }
 
 std::string Hybrid::describe() const {
-  return fmt::format("far field: {} nodes, {} elements (trilinear{}{}{}{}), {} tied to grid nodes ({} exactly), {} with "
-                     "conditions; stable step {:.4g} s; {:.1f} MB",
-                     far_field_->node_count(), far_field_->cell_count(),
-                     far_field_->finite_strain() ? ", finite strain" : "",
-                     failing_faces_ ? ", failing J2 facesheets" : plastic_faces_ ? ", J2 facesheets" : "",
-                     spec_.strain_rate ? " at their strain rate" : "",
-                     failing_core_ ? ", failing core" : yielding_core_ ? ", yielding core" : "",
-                     coupling_->tied_node_count(),
-                     coupling_->exact_node_count(), fixed_nodes_, far_field_->stable_time_step(),
-                     far_field_->bytes() / 1e6);
+  return fmt::format(
+      "far field: {} nodes, {} elements (trilinear{}{}{}{}), {} tied to grid nodes ({} exactly), "
+      "{} with "
+      "conditions; stable step {:.4g} s; {:.1f} MB",
+      far_field_->node_count(), far_field_->cell_count(),
+      far_field_->finite_strain() ? ", finite strain" : "",
+      failing_faces_   ? ", failing J2 facesheets"
+      : plastic_faces_ ? ", J2 facesheets"
+                       : "",
+      spec_.strain_rate ? " at their strain rate" : "",
+      failing_core_    ? ", failing core"
+      : yielding_core_ ? ", yielding core"
+                       : "",
+      coupling_->tied_node_count(), coupling_->exact_node_count(), fixed_nodes_,
+      far_field_->stable_time_step(), far_field_->bytes() / 1e6);
 }
 
 void Hybrid::write_snapshot(const fs::path& dir, std::int64_t step, double time) {
@@ -178,13 +188,16 @@ coupling::NewPoints Hybrid::sample_ring(const std::vector<std::array<double, 4>>
       // The core's points are its walls': each takes its wall's direction.
       for (std::size_t k = 0; k < set.size(); ++k) {
         const geometry::Point2 t = b == panel_bodies_[1]
-                                       ? pattern_->wall_direction(pattern_->wall_family({set.position[3 * k], set.position[3 * k + 1]}))
+                                       ? pattern_->wall_direction(pattern_->wall_family(
+                                             {set.position[3 * k], set.position[3 * k + 1]}))
                                        : geometry::Point2{0.0, 0.0};
         points.wall_direction.insert(points.wall_direction.end(), {t[0], t[1]});
       }
-      points.density.insert(points.density.end(), set.size(), solver.materials()[material]->reference_density());
+      points.density.insert(points.density.end(), set.size(),
+                            solver.materials()[material]->reference_density());
       points.body.insert(points.body.end(), set.size(), static_cast<std::int64_t>(b));
-      points.material.insert(points.material.end(), set.size(), static_cast<std::int64_t>(material));
+      points.material.insert(points.material.end(), set.size(),
+                             static_cast<std::int64_t>(material));
     }
   // Half-widths only when every body has them (GIMP domains of the sampler's points).
   if (points.half_width.size() != 3 * points.size()) points.half_width.clear();
@@ -197,14 +210,15 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
   // The panel's points damaged at a side, or the far field's own cells torn just beyond it.
   std::array<bool, 4> reached = coupling::sides_reached(solver.particles(), bodies, zone, *growth_);
-  const std::array<bool, 4> outside =
-      coupling::sides_reached_from_outside(far_field_->damaged_cell_centres(growth_->damage), zone, *growth_);
+  const std::array<bool, 4> outside = coupling::sides_reached_from_outside(
+      far_field_->damaged_cell_centres(growth_->damage), zone, *growth_);
   for (int side = 0; side < 4; ++side) reached[side] = reached[side] || outside[side];
   const std::array<bool, 4> held = coupling::sides_held_at_limit(reached, zone, *growth_);
   if (std::find(held.begin(), held.end(), true) != held.end()) {
     if (held_at_limit_.steps++ == 0) held_at_limit_.first_time = solver.time();
     held_at_limit_.last_time = solver.time();
-    for (int side = 0; side < 4; ++side) held_at_limit_.sides[side] = held_at_limit_.sides[side] || held[side];
+    for (int side = 0; side < 4; ++side)
+      held_at_limit_.sides[side] = held_at_limit_.sides[side] || held[side];
   }
   const std::array<double, 4> grown = coupling::grown_zone(reached, zone, *growth_);
   if (grown == zone) return std::nullopt;
@@ -214,10 +228,11 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   // homogenised core's points take its walls' (coupling/zone_growth.hpp).
   using Kind = coupling::LayerTakeover::Kind;
   const coupling::LayerTakeover solid{Kind::solid, 0.0, 0.0};
-  const coupling::LayerTakeover walls{Kind::walls, spec_.core_wall.youngs_modulus, spec_.core_wall.poisson_ratio};
-  const auto report = coupling::take_over(*coupling_, *far_field_, solver, points,
-                                          coupling::panel_interface_band(spec_, grid_geometry(scene_)),
-                                          {solid, walls, solid});
+  const coupling::LayerTakeover walls{Kind::walls, spec_.core_wall.youngs_modulus,
+                                      spec_.core_wall.poisson_ratio};
+  const auto report = coupling::take_over(
+      *coupling_, *far_field_, solver, points,
+      coupling::panel_interface_band(spec_, grid_geometry(scene_)), {solid, walls, solid});
   last_points_ = std::move(points.position);
   return report;
 }
@@ -233,7 +248,8 @@ void Hybrid::save(std::map<std::string, double>& extras) const {
 
 void Hybrid::load(const std::map<std::string, double>& extras) {
   const auto steps = extras.find("zone_limit_steps");
-  if (!growth_ || steps == extras.end()) return;  // a checkpoint from before hvi kept the record: none so far
+  if (!growth_ || steps == extras.end())
+    return;  // a checkpoint from before hvi kept the record: none so far
   LimitRecord& r = held_at_limit_;
   r.steps = static_cast<std::int64_t>(steps->second);
   r.first_time = extras.at("zone_limit_first_time");

@@ -13,13 +13,13 @@
 #include <utility>
 #include <vector>
 
-#include "scene/scene.hpp"
 #include "coupling/far_field_coupling.hpp"
 #include "coupling/panel_far_field.hpp"
 #include "coupling/zone_growth.hpp"
 #include "fem/far_field.hpp"
 #include "geometry/honeycomb.hpp"
 #include "mpm/solver.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::driver {
 
@@ -70,15 +70,16 @@ class Hybrid {
   const LimitRecord& held_at_limit() const { return held_at_limit_; }
   void save(std::map<std::string, double>& checkpoint_extras) const;
   void load(const std::map<std::string, double>& checkpoint_extras);
-  // The points a grown zone gets over the ring's `boxes` (in plane, x0, y0, x1, y1; coupling::ring):
-  // the panel's bodies cut to each and sampled, undeformed.
-  coupling::NewPoints sample_ring(const std::vector<std::array<double, 4>>& boxes, const mpm::Solver& solver) const;
+  // The points a grown zone gets over the ring's `boxes` (in plane, x0, y0, x1, y1;
+  // coupling::ring): the panel's bodies cut to each and sampled, undeformed.
+  coupling::NewPoints sample_ring(const std::vector<std::array<double, 4>>& boxes,
+                                  const mpm::Solver& solver) const;
 
  private:
   const scene::Scene& scene_;
   coupling::PanelFarFieldSpec spec_;
   std::optional<coupling::ZoneGrowth> growth_;
-  std::array<std::size_t, 3> panel_bodies_{};  // front, core, rear
+  std::array<std::size_t, 3> panel_bodies_{};    // front, core, rear
   std::optional<geometry::HexPattern> pattern_;  // the panel's cells, for its walls' directions
   std::vector<double> last_points_;
   LimitRecord held_at_limit_;
@@ -86,7 +87,8 @@ class Hybrid {
   std::unique_ptr<coupling::FarFieldCoupling> coupling_;
   std::vector<std::pair<double, std::string>> snapshots_;  // (time, file)
   std::size_t fixed_nodes_ = 0;
-  bool plastic_faces_ = false, failing_faces_ = false, yielding_core_ = false, failing_core_ = false;
+  bool plastic_faces_ = false, failing_faces_ = false, yielding_core_ = false,
+       failing_core_ = false;
 };
 
 // The scene's hybrid, or null when it names no far field.

@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 
 #include "analysis/snapshot.hpp"
-#include "scene/run_info.hpp"
 #include "mpm/io/snapshot_writer.hpp"
+#include "scene/run_info.hpp"
 
 namespace hvi::driver {
 
@@ -71,8 +71,8 @@ std::size_t snapshot_index(const std::string& which,
     throw std::invalid_argument(
         fmt::format("--snapshot: expected an index, 'last' or 'all', got '{}'", which));
   if (!snapshots.contains(static_cast<std::size_t>(n)))
-    throw std::invalid_argument(fmt::format("--snapshot {}: {} has snapshots {}", n, run.string(),
-                                            index_list(snapshots)));
+    throw std::invalid_argument(
+        fmt::format("--snapshot {}: {} has snapshots {}", n, run.string(), index_list(snapshots)));
   return static_cast<std::size_t>(n);
 }
 
@@ -107,7 +107,8 @@ struct OpenRun {
   std::map<std::size_t, fs::path> snapshots;
   analysis::Snapshot first;
   analysis::MirrorPlanes mirror;
-  std::int64_t stride = 1;  // id offset of mirror images: above every id at t = 0 (a growing zone adds more)
+  std::int64_t stride =
+      1;  // id offset of mirror images: above every id at t = 0 (a growing zone adds more)
   Projectile projectile;
   ParticleData projectile_initial;  // the projectile's points at t = 0, mirrored
   // z at t = 0 by id (NaN: no point of that id at t = 0). Mirroring keeps z, so an image's is its
@@ -125,7 +126,8 @@ OpenRun open_run(const MeasureOptions& o) {
   OpenRun r;
   r.info = read_run_info(scene_file);
   r.snapshots = mpm::io::SnapshotWriter::files(run);
-  if (r.snapshots.empty()) throw std::invalid_argument(fmt::format("{}: no snapshots", run.string()));
+  if (r.snapshots.empty())
+    throw std::invalid_argument(fmt::format("{}: no snapshots", run.string()));
   if (!r.snapshots.contains(0))
     throw std::invalid_argument(fmt::format(
         "{}: no snapshots/particles_000000.h5 (the state at step 0, which the measure needs for "
@@ -139,14 +141,15 @@ OpenRun open_run(const MeasureOptions& o) {
   attach_spacing(r.first.particles, r.first.volume0, r.info, r.first.file);
   for (const std::int64_t id : p.id) {
     if (id < 0)
-      throw std::invalid_argument(fmt::format("{}: particle id {} (ids are not negative)", r.first.file.string(), id));
+      throw std::invalid_argument(
+          fmt::format("{}: particle id {} (ids are not negative)", r.first.file.string(), id));
     r.stride = std::max(r.stride, id + 1);
   }
   r.mirror = o.mirror ? r.info.mirror : analysis::MirrorPlanes{};
   r.projectile = find_projectile(r.first);
   if (r.projectile.body >= 0)
-    r.projectile_initial = analysis::mirrored(p.view(), r.mirror, r.stride,
-                                              analysis::particles_of(p.view(), r.projectile.body, false));
+    r.projectile_initial = analysis::mirrored(
+        p.view(), r.mirror, r.stride, analysis::particles_of(p.view(), r.projectile.body, false));
   r.initial_z.assign(static_cast<std::size_t>(r.stride), std::numeric_limits<double>::quiet_NaN());
   std::vector<std::pair<double, double>> body_z(r.info.bodies.size());  // (sum z, count)
   for (std::size_t k = 0; k < p.size(); ++k) {
@@ -155,7 +158,8 @@ OpenRun open_run(const MeasureOptions& o) {
     body_z[static_cast<std::size_t>(p.body[k])].first += z;
     body_z[static_cast<std::size_t>(p.body[k])].second += 1;
   }
-  for (const auto& [sum, count] : body_z) r.body_mean_z.push_back(count > 0 ? sum / count : std::nan(""));
+  for (const auto& [sum, count] : body_z)
+    r.body_mean_z.push_back(count > 0 ? sum / count : std::nan(""));
   return r;
 }
 
@@ -192,20 +196,24 @@ BackFace back_face(const RunInfo& info, const analysis::Snapshot& first, int beh
   const ParticleData& p = first.particles;
   for (std::size_t k = 0; k < p.size(); ++k)
     if (p.body[k] == behind) f.z = std::min(f.z, p.position[3 * k + 2] - p.spacing[k] / 2);
-  if (!std::isfinite(f.z)) throw std::invalid_argument(fmt::format("body '{}' has no particles", info.bodies[behind].name));
+  if (!std::isfinite(f.z))
+    throw std::invalid_argument(
+        fmt::format("body '{}' has no particles", info.bodies[behind].name));
   f.threshold = info.bodies[behind].spacing;
   return f;
 }
 
 // What the measures read, mirrored: the facesheets, and whatever lies behind the back face
 // (debris candidates; the debris test itself is one spacing further back).
-ParticleData points_read(const analysis::Snapshot& now, const Facesheets& sheets, const BackFace& back,
-                         const analysis::MirrorPlanes& mirror, std::int64_t stride) {
+ParticleData points_read(const analysis::Snapshot& now, const Facesheets& sheets,
+                         const BackFace& back, const analysis::MirrorPlanes& mirror,
+                         std::int64_t stride) {
   std::vector<std::size_t> read;
   const ParticleData& p = now.particles;
   const double z_debris = back.z - back.threshold / 2;
   for (std::size_t k = 0; k < p.size(); ++k)
-    if (p.body[k] == sheets.front || p.body[k] == sheets.rear || p.position[3 * k + 2] < z_debris) read.push_back(k);
+    if (p.body[k] == sheets.front || p.body[k] == sheets.rear || p.position[3 * k + 2] < z_debris)
+      read.push_back(k);
   return analysis::mirrored(p.view(), mirror, stride, read);
 }
 
@@ -213,7 +221,8 @@ ParticleData points_read(const analysis::Snapshot& now, const Facesheets& sheets
 std::array<double, 2> impact_axis(const MeasureOptions& o, const OpenRun& run) {
   if (o.axis) return *o.axis;
   if (run.projectile.body < 0)
-    throw std::invalid_argument("no body moves at t = 0 to take the impact axis from: give --axis x0,y0");
+    throw std::invalid_argument(
+        "no body moves at t = 0 to take the impact axis from: give --axis x0,y0");
   const ParticleData& initial = run.projectile_initial;
   double m = 0, x = 0, y = 0;
   for (std::size_t k = 0; k < initial.size(); ++k) {
@@ -227,10 +236,9 @@ std::array<double, 2> impact_axis(const MeasureOptions& o, const OpenRun& run) {
 }
 
 // One facesheet in top view: its hole and the points still attached to it.
-std::pair<SheetMeasurement, analysis::FacesheetResult> measure_sheet(const MeasureOptions& o, const RunInfo& info,
-                                                                    const ParticleData& current, int body,
-                                                                    std::array<double, 2> axis,
-                                                                    analysis::DiameterRule rule) {
+std::pair<SheetMeasurement, analysis::FacesheetResult> measure_sheet(
+    const MeasureOptions& o, const RunInfo& info, const ParticleData& current, int body,
+    std::array<double, 2> axis, analysis::DiameterRule rule) {
   analysis::FacesheetOptions f;
   f.axis = axis;
   f.rule = rule;
@@ -239,15 +247,16 @@ std::pair<SheetMeasurement, analysis::FacesheetResult> measure_sheet(const Measu
   f.view.gap_closing = o.gap_closing;
   f.link_factor = o.link_factor;
   analysis::FacesheetResult r = analysis::measure_facesheet(current.view(), body, f);
-  SheetMeasurement s{info.bodies[body].name, r.hole, r.raster.spacing, r.raster.closing_radius, r.intact, r.detached};
+  SheetMeasurement s{info.bodies[body].name,  r.hole,   r.raster.spacing,
+                     r.raster.closing_radius, r.intact, r.detached};
   return {s, std::move(r)};
 }
 
 // Debris behind the last sheet's back face. Not debris: `excluded` (the sheet's own attached
 // material: a bulge, petals), and material that was behind the face from the start (the rest of
 // a panel when only --front is named).
-void measure_debris(Measurements& out, const OpenRun& run, const ParticleData& current, const BackFace& back,
-                    std::int64_t stride, std::vector<std::size_t> excluded) {
+void measure_debris(Measurements& out, const OpenRun& run, const ParticleData& current,
+                    const BackFace& back, std::int64_t stride, std::vector<std::size_t> excluded) {
   analysis::DebrisOptions d;
   d.axis_point = {out.axis[0], out.axis[1], 0};
   d.direction = impact_direction;
@@ -286,7 +295,8 @@ void add_variables(Measurements& out, const OpenRun& run, const Facesheets& shee
       *d *= 2;
     } else {  // the diameter of the sphere of the same volume
       double v = 0;
-      for (const double volume : run.projectile_initial.volume) v += volume;  // at t = 0, the initial volume
+      for (const double volume : run.projectile_initial.volume)
+        v += volume;  // at t = 0, the initial volume
       d = std::cbrt(6 * v / std::numbers::pi);
     }
     add("d_p", d);
@@ -324,7 +334,8 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
   out.time = now.time;
   out.step = now.step;
   if (now.particles.failed.empty())
-    out.notes.push_back("no 'failed' field in the snapshot (no failure model): every particle counts as intact");
+    out.notes.push_back(
+        "no 'failed' field in the snapshot (no failure model): every particle counts as intact");
   // A hybrid's zone that grows adds points after t = 0, with ids beyond those of the first
   // snapshot: mirror images then need a larger id offset, and the points have no initial state.
   std::int64_t stride = run.stride;
@@ -347,8 +358,10 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     rear_attached = view.attached;
     if (!s.hole.perforated && !view.attached.empty()) {
       const ParticleSet p = first.particles.view();
-      const ParticleData initial = analysis::mirrored(p, out.mirror, stride, analysis::particles_of(p, sheets.rear, false));
-      out.bulge = analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
+      const ParticleData initial =
+          analysis::mirrored(p, out.mirror, stride, analysis::particles_of(p, sheets.rear, false));
+      out.bulge =
+          analysis::rear_bulge(initial.view(), current.view(), view.attached, impact_direction);
     }
     if (o.images) out.rear_view = std::move(view);
   }
@@ -362,7 +375,8 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
     out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
 
   if (behind >= 0) {
-    measure_debris(out, run, current, back, stride, sheets.rear >= 0 ? rear_attached : front_attached);
+    measure_debris(out, run, current, back, stride,
+                   sheets.rear >= 0 ? rear_attached : front_attached);
     out.debris_behind = info.bodies[behind].name;
   }
   add_variables(out, run, sheets);

@@ -98,7 +98,8 @@ std::vector<std::pair<std::string, std::string>> csv_cells(const Measurements& m
 // One CSV line of a measurement: its column names (header) or its values.
 void write_csv_line(std::ostream& out, const Measurements& m, bool header) {
   const auto cells = csv_cells(m);
-  for (std::size_t k = 0; k < cells.size(); ++k) out << (k ? "," : "") << (header ? cells[k].first : cells[k].second);
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    out << (k ? "," : "") << (header ? cells[k].first : cells[k].second);
   out << '\n';
 }
 
@@ -221,10 +222,12 @@ void keep_history_rows(const fs::path& file, std::int64_t last_step) {
       const auto a = line.find(',');
       const auto b = a == std::string::npos ? a : line.find(',', a + 1);
       const auto c = b == std::string::npos ? b : line.find(',', b + 1);
-      // (A line whose step does not parse, a file edited by hand, is kept rather than stopping the run.)
+      // (A line whose step does not parse, a file edited by hand, is kept rather than stopping the
+      // run.)
       std::int64_t step = 0;
-      const bool parsed = c != std::string::npos &&
-                          std::from_chars(line.data() + b + 1, line.data() + c, step).ec == std::errc{};
+      const bool parsed =
+          c != std::string::npos &&
+          std::from_chars(line.data() + b + 1, line.data() + c, step).ec == std::errc{};
       if (!first && parsed && step > last_step) continue;
       kept += line + '\n';
     }
@@ -233,8 +236,8 @@ void keep_history_rows(const fs::path& file, std::int64_t last_step) {
 }
 
 void remove_measurements(const fs::path& dir) {
-  for (const char* f : {"measurements.json", "measurements.csv", "top_view_front.pgm", "top_view_rear.pgm",
-                        "measurements_history.csv", "measure.log"})
+  for (const char* f : {"measurements.json", "measurements.csv", "top_view_front.pgm",
+                        "top_view_rear.pgm", "measurements_history.csv", "measure.log"})
     fs::remove(dir / f);
 }
 
@@ -249,7 +252,8 @@ std::vector<std::pair<std::string, double>> headline_quantities(const Measuremen
     const double nan = std::numeric_limits<double>::quiet_NaN();
     q.emplace_back(fmt::format("D_{}", c), s->hole.resolution > 0 ? s->hole.D : nan);
     q.emplace_back(fmt::format("e_{}", c), s->hole.resolution > 0 ? s->hole.eccentricity : nan);
-    // 1: the hole reaches the sheet's edge (a hybrid's zone, the model's side), so D is a lower bound.
+    // 1: the hole reaches the sheet's edge (a hybrid's zone, the model's side), so D is a lower
+    // bound.
     q.emplace_back(fmt::format("{}_hole_open", which), s->hole.open ? 1.0 : 0.0);
   };
   sheet(m.front, "front");
@@ -285,7 +289,8 @@ void print_measurements(const Measurements& m) {
         "{:.3f} mm deep, "
         "{:.3f} mm from the axis, kinetic energy {:.4g} J\n",
         m.debris_behind, m.debris_threshold / mm, m.debris_back_face / mm, m.debris.mass * 1e3,
-        m.debris.particles, m.debris.axial_extent / mm, m.debris.radial_extent / mm, m.debris.kinetic_energy);
+        m.debris.particles, m.debris.axial_extent / mm, m.debris.radial_extent / mm,
+        m.debris.kinetic_energy);
   for (const auto& n : m.notes) fmt::print("note: {}\n", n);
 }
 

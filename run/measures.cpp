@@ -13,7 +13,8 @@ namespace hvi::driver {
 void track(const mpm::Solver& solver, RunRecord& record) {
   const auto& P = solver.particles();
   double peak = record.peak_pressure;
-  for (std::size_t p = 0; p < P.size(); ++p) peak = std::max(peak, -mpm::trace_sym(&P.stress[6 * p]) / 3.0);
+  for (std::size_t p = 0; p < P.size(); ++p)
+    peak = std::max(peak, -mpm::trace_sym(&P.stress[6 * p]) / 3.0);
   record.peak_pressure = peak;
 }
 
@@ -25,7 +26,8 @@ std::int64_t body_index(const mpm::Solver& solver, const std::string& name) {
   return std::find(names.begin(), names.end(), name) - names.begin();
 }
 
-double measure(const scene::MeasureSettings& m, const mpm::Solver& solver, const RunRecord& record) {
+double measure(const scene::MeasureSettings& m, const mpm::Solver& solver,
+               const RunRecord& record) {
   const auto& P = solver.particles();
   const std::int64_t body = body_index(solver, m.body);
   auto counted = [&](std::size_t p) { return body < 0 || P.body[p] == body; };

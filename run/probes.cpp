@@ -52,14 +52,16 @@ Probes::Probes(const scene::Scene& scene, const mpm::Solver& solver, const Hybri
   }
 }
 
-void Probes::choose_particles(Probe& probe, const mpm::Solver& solver, double h, std::int64_t first_id,
-                              const std::vector<double>& reference) {
+void Probes::choose_particles(Probe& probe, const mpm::Solver& solver, double h,
+                              std::int64_t first_id, const std::vector<double>& reference) {
   const auto& P = solver.particles();
   auto X = [&](std::size_t p) {
-    return reference.empty() ? &P.position[3 * p] : &reference[3 * static_cast<std::size_t>(P.id[p] - first_id)];
+    return reference.empty() ? &P.position[3 * p]
+                             : &reference[3 * static_cast<std::size_t>(P.id[p] - first_id)];
   };
   const auto& names = solver.body_names();
-  std::int64_t body = probe.body.empty() ? -1 : std::find(names.begin(), names.end(), probe.body) - names.begin();
+  std::int64_t body =
+      probe.body.empty() ? -1 : std::find(names.begin(), names.end(), probe.body) - names.begin();
   double best = std::numeric_limits<double>::infinity();
   std::size_t nearest = P.size();
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -74,7 +76,8 @@ void Probes::choose_particles(Probe& probe, const mpm::Solver& solver, double h,
   if (nearest == P.size()) return;
   body = P.body[nearest];
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.id[p] >= first_id && P.body[p] == body && distance2(X(p), probe.point) <= std::max(h * h, best)) {
+    if (P.id[p] >= first_id && P.body[p] == body &&
+        distance2(X(p), probe.point) <= std::max(h * h, best)) {
       probe.slot[P.id[p]] = probe.ids.size();
       probe.ids.push_back(P.id[p]);
       probe.reference.insert(probe.reference.end(), X(p), X(p) + 3);
@@ -93,7 +96,8 @@ void Probes::zone_grew(const mpm::Solver& solver, std::int64_t first_id) {
     const auto u = hybrid_->far_field().displacement();
     for (std::size_t q = 0; q < P.size(); ++q)
       if (const auto it = p.slot.find(P.id[q]); it != p.slot.end())
-        for (int d = 0; d < 3; ++d) p.reference[3 * it->second + d] = P.position[3 * q + d] - u[3 * p.node + d];
+        for (int d = 0; d < 3; ++d)
+          p.reference[3 * it->second + d] = P.position[3 * q + d] - u[3 * p.node + d];
     p.far_field = false;
   }
 }
@@ -106,7 +110,8 @@ void Probes::save(mpm::io::CheckpointExtras& extras) const {
     extras[key + ".n"] = static_cast<double>(p.ids.size());
     for (std::size_t k = 0; k < p.ids.size(); ++k) {
       extras[fmt::format("{}.{}.id", key, k)] = static_cast<double>(p.ids[k]);
-      for (int d = 0; d < 3; ++d) extras[fmt::format("{}.{}.x{}", key, k, d)] = p.reference[3 * k + d];
+      for (int d = 0; d < 3; ++d)
+        extras[fmt::format("{}.{}.x{}", key, k, d)] = p.reference[3 * k + d];
     }
   }
 }
@@ -125,7 +130,8 @@ void Probes::load(const mpm::io::CheckpointExtras& extras) {
     for (std::size_t k = 0; k < n; ++k) {
       p.ids[k] = static_cast<std::int64_t>(extras.at(fmt::format("{}.{}.id", key, k)));
       p.slot[p.ids[k]] = k;
-      for (int d = 0; d < 3; ++d) p.reference[3 * k + d] = extras.at(fmt::format("{}.{}.x{}", key, k, d));
+      for (int d = 0; d < 3; ++d)
+        p.reference[3 * k + d] = extras.at(fmt::format("{}.{}.x{}", key, k, d));
     }
   }
 }
@@ -137,7 +143,8 @@ void Probes::open(const std::filesystem::path& dir, std::int64_t resume_step) {
     std::ifstream in(dir / "probes.csv");
     std::string line;
     std::getline(in, line);
-    while (std::getline(in, line) && std::stoll(line.substr(0, line.find(','))) <= resume_step) kept.push_back(line);
+    while (std::getline(in, line) && std::stoll(line.substr(0, line.find(','))) <= resume_step)
+      kept.push_back(line);
   }
   log_.open(dir / "probes.csv", std::ios::trunc);
   log_ << "step,time";

@@ -24,10 +24,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "run/hybrid.hpp"
-#include "scene/scene.hpp"
 #include "mpm/io/checkpoint.hpp"
 #include "mpm/solver.hpp"
+#include "run/hybrid.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::driver {
 
@@ -52,14 +52,14 @@ class Probes {
   struct Probe {
     std::string name;
     std::array<double, 3> point{};
-    std::string body;                 // the measure's `body`, or empty
+    std::string body;  // the measure's `body`, or empty
     int axis = 2;
     bool far_field = false;
-    std::size_t node = 0;             // far field
-    std::vector<std::int64_t> ids;    // particles
-    std::vector<double> reference;    // their undeformed positions, 3 per particle
+    std::size_t node = 0;           // far field
+    std::vector<std::int64_t> ids;  // particles
+    std::vector<double> reference;  // their undeformed positions, 3 per particle
     std::unordered_map<std::int64_t, std::size_t> slot;  // particle id -> index into ids
-    double peak = 0.0;                // of largest magnitude so far
+    double peak = 0.0;                                   // of largest magnitude so far
   };
   double value(const Probe& p, const mpm::Solver& solver) const;
   // Follows the particles from `first` (index) near the probe's point, taking their undeformed

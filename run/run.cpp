@@ -15,6 +15,10 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "mpm/io/checkpoint.hpp"
+#include "mpm/io/energy_log.hpp"
+#include "mpm/io/snapshot_writer.hpp"
+#include "mpm/materials/hydro_material.hpp"
 #include "run/build_solver.hpp"
 #include "run/hole_history.hpp"
 #include "run/hybrid.hpp"
@@ -22,10 +26,6 @@
 #include "run/measures.hpp"
 #include "run/probes.hpp"
 #include "run/run_output.hpp"
-#include "mpm/io/checkpoint.hpp"
-#include "mpm/io/energy_log.hpp"
-#include "mpm/io/snapshot_writer.hpp"
-#include "mpm/materials/hydro_material.hpp"
 
 namespace hvi::driver {
 
@@ -35,7 +35,9 @@ namespace {
 
 // The signal (SIGINT or SIGTERM) that asked the run to stop at the end of its step; 0: none.
 volatile std::sig_atomic_t stop_signal = 0;
-extern "C" void on_stop_signal(int number) { stop_signal = number; }
+extern "C" void on_stop_signal(int number) {
+  stop_signal = number;
+}
 
 // Snapshot/checkpoint times: multiples of an interval; due once the run has reached them.
 struct Schedule {
@@ -93,11 +95,14 @@ class SceneRun {
   void measure_holes();
   void write_snapshots();
   void checkpoint(double wall);
-  void print_result(int code, double rate, std::size_t peak_memory, const mpm::EnergyReport& e, double balance) const;
+  void print_result(int code, double rate, std::size_t peak_memory, const mpm::EnergyReport& e,
+                    double balance) const;
   void print_far_field() const;
-  toml::table summary(const char* status, double rate, std::size_t peak_memory, double balance) const;
+  toml::table summary(const char* status, double rate, std::size_t peak_memory,
+                      double balance) const;
   void add_far_field_summary(toml::table& summary) const;
-  void measure_final_holes(toml::table& summary, std::map<std::string, double>& measured, std::size_t peak_memory);
+  void measure_final_holes(toml::table& summary, std::map<std::string, double>& measured,
+                           std::size_t peak_memory);
 
   const scene::Scene& scene_;
   const RunOptions& options_;
@@ -105,13 +110,13 @@ class SceneRun {
   const double end_;
   int threads_ = 0;
   std::unique_ptr<mpm::Solver> solver_;
-  std::vector<std::size_t> counts_;  // points per body, of a new run
+  std::vector<std::size_t> counts_;   // points per body, of a new run
   mpm::io::CheckpointExtras extras_;  // of a resumed run
   std::unique_ptr<Hybrid> hybrid_;    // only when the scene names a [far_field]
   std::unique_ptr<Probes> probes_;
   std::optional<mpm::io::SnapshotWriter> snapshots_;
   const scene::MeasureSettings* holes_ = nullptr;  // the holes measure, if any
-  std::optional<HoleHistory> history_;      // the holes at every snapshot, when it asks for them
+  std::optional<HoleHistory> history_;  // the holes at every snapshot, when it asks for them
   std::optional<mpm::io::EnergyLog> energy_log_;
   Schedule output_{0, 0}, checkpoints_{0, 0};
   double initial_energy_ = 0.0;
@@ -128,7 +133,10 @@ class SceneRun {
 
 int SceneRun::check_directory() const {
   if (!options_.resume && !options_.overwrite && fs::exists(dir_ / "scene.resolved.toml")) {
-    fmt::print(stderr, "hvi: {} holds a previous run; use --overwrite to replace it or --resume to continue it\n", dir_.string());
+    fmt::print(
+        stderr,
+        "hvi: {} holds a previous run; use --overwrite to replace it or --resume to continue it\n",
+        dir_.string());
     return input_error;
   }
   if (options_.resume && !fs::exists(dir_ / "checkpoint.h5")) {
@@ -160,9 +168,12 @@ int SceneRun::build() {
     return input_error;
   }
   for (const auto& m : scene_.measures)
-    if (!m.field.empty() && (m.kind == "field_max" || m.kind == "field_min") && !solver_->particles().has_field(m.field)) {
-      fmt::print(stderr, "hvi: {}: measure '{}': no particle field '{}' in this scene (is its model named?)\n",
-                 scene_.file, m.name, m.field);
+    if (!m.field.empty() && (m.kind == "field_max" || m.kind == "field_min") &&
+        !solver_->particles().has_field(m.field)) {
+      fmt::print(
+          stderr,
+          "hvi: {}: measure '{}': no particle field '{}' in this scene (is its model named?)\n",
+          scene_.file, m.name, m.field);
       return input_error;
     }
   return success;
@@ -175,9 +186,9 @@ void SceneRun::prepare_directory() {
   // the run again; by hand, `hvi measure` does.
   if (options_.overwrite || options_.resume) remove_measurements(dir_);
   if (options_.overwrite && !options_.resume) {
-    for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json", "summary.toml", "timing.csv",
-                          "run.resumed.json", "resumes.jsonl", "failure.h5", "far_field.pvd", "probes.csv",
-                          hole_history_file})
+    for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json",
+                          "summary.toml", "timing.csv", "run.resumed.json", "resumes.jsonl",
+                          "failure.h5", "far_field.pvd", "probes.csv", hole_history_file})
       fs::remove(dir_ / f);
     fs::remove_all(dir_ / "snapshots");
     fs::remove_all(dir_ / "far_field");
@@ -195,7 +206,8 @@ void SceneRun::open_logs() {
   const std::int64_t resume_step = options_.resume ? s.step_count() : -1;
   snapshots_.emplace(dir_);
   snapshots_->keep_newest(static_cast<std::size_t>(scene_.keep_snapshots));
-  const auto holes = std::find_if(scene_.measures.begin(), scene_.measures.end(), [](const auto& m) { return m.kind == "holes"; });
+  const auto holes = std::find_if(scene_.measures.begin(), scene_.measures.end(),
+                                  [](const auto& m) { return m.kind == "holes"; });
   if (holes != scene_.measures.end()) holes_ = &*holes;
   if (holes_ && holes_->history) history_.emplace(dir_, holes_->body, resume_step);
   energy_log_.emplace(dir_ / "energy.csv", resume_step, hybrid_ != nullptr, s.contact() != nullptr);
@@ -230,9 +242,10 @@ void SceneRun::resume_state() {
   initial_energy_ = extras_.at("initial_energy");
   record_.peak_pressure = extras_.at("peak_pressure");
   const auto recorded = extras_.find("wall_seconds");
-  earlier_wall_ = recorded != extras_.end() ? recorded->second : std::numeric_limits<double>::quiet_NaN();
-  fmt::print("hvi: resuming {} at step {}, t = {:.6g} s ({} particles, {} threads)\n", dir_.string(), s.step_count(),
-             s.time(), s.particles().size(), threads_);
+  earlier_wall_ =
+      recorded != extras_.end() ? recorded->second : std::numeric_limits<double>::quiet_NaN();
+  fmt::print("hvi: resuming {} at step {}, t = {:.6g} s ({} particles, {} threads)\n",
+             dir_.string(), s.step_count(), s.time(), s.particles().size(), threads_);
 }
 
 int SceneRun::start_at_zero() {
@@ -242,8 +255,9 @@ int SceneRun::start_at_zero() {
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
     fmt::print("  body '{}': {} particles, material '{}'\n", scene_.bodies[b].name, counts_[b],
                scene_.materials[scene_.bodies[b].material].name);
-  fmt::print("  grid {} x {} x {} cells of {:.4g} m; {} threads; first dt {:.4g} s\n", scene_.grid.cells[0],
-             scene_.grid.cells[1], scene_.grid.cells[2], scene_.grid.cell_size, threads_, s.next_time_step());
+  fmt::print("  grid {} x {} x {} cells of {:.4g} m; {} threads; first dt {:.4g} s\n",
+             scene_.grid.cells[0], scene_.grid.cells[1], scene_.grid.cells[2],
+             scene_.grid.cell_size, threads_, s.next_time_step());
   if (hybrid_) fmt::print("  {}\n", hybrid_->describe());
   const mpm::EnergyReport e0 = s.energy();
   initial_energy_ = e0.total();
@@ -256,7 +270,8 @@ int SceneRun::start_at_zero() {
   if (history_) try {
       measure_holes();
     } catch (const std::exception& e) {
-      fmt::print(stderr, "hvi: {}: measure '{}' (history = true): {}\n", scene_.file, holes_->name, e.what());
+      fmt::print(stderr, "hvi: {}: measure '{}' (history = true): {}\n", scene_.file, holes_->name,
+                 e.what());
       return input_error;
     }
   return success;
@@ -286,7 +301,9 @@ int SceneRun::time_loop() {
     fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
     // The state at the failure, for a look in ParaView or h5py (not a restart point).
     mpm::io::write_snapshot_file(dir_ / "failure.h5", s);
-    fmt::print(stderr, "hvi: {} holds the state at the failure; checkpoint.h5 (step {}) the last state before it\n",
+    fmt::print(stderr,
+               "hvi: {} holds the state at the failure; checkpoint.h5 (step {}) the last state "
+               "before it\n",
                (dir_ / "failure.h5").string(), last_checkpoint_step_);
     return run_failed;
   }
@@ -321,20 +338,25 @@ void SceneRun::grow_zone() {
   const auto r = hybrid_->grow(s);
   if (hybrid_->held_at_limit().sides != held_before) {
     std::array<bool, 4> now{};
-    for (int side = 0; side < 4; ++side) now[side] = hybrid_->held_at_limit().sides[side] && !held_before[side];
-    fmt::print("  step {}, t = {:.6g} s: the panel's damage reached the MPM zone's edge at {}, its limit "
-               "(far_field.zone.grow): the far field there holds damage it cannot; a wider limit lets the zone go on\n",
-               s.step_count(), s.time(), side_names(now, hybrid_->zone()));
+    for (int side = 0; side < 4; ++side)
+      now[side] = hybrid_->held_at_limit().sides[side] && !held_before[side];
+    fmt::print(
+        "  step {}, t = {:.6g} s: the panel's damage reached the MPM zone's edge at {}, its limit "
+        "(far_field.zone.grow): the far field there holds damage it cannot; a wider limit lets the "
+        "zone go on\n",
+        s.step_count(), s.time(), side_names(now, hybrid_->zone()));
   }
   if (!r) return;
   probes_->zone_grew(s, r->first_id);
   const auto& z = hybrid_->zone();
-  fmt::print("  step {}, t = {:.6g} s: the MPM zone grew to [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm: {} points "
-             "took over {} far-field elements; energy not carried over {:.3g} J of {:.3g} J (kinetic "
-             "{:.3g} J of {:.3g} J)\n",
-             s.step_count(), s.time(), 1e3 * z[0], 1e3 * z[2], 1e3 * z[1], 1e3 * z[3], r->points, r->cells,
-             r->far_field_energy - r->point_energy, r->far_field_energy, r->far_field_kinetic - r->point_kinetic,
-             r->far_field_kinetic);
+  fmt::print(
+      "  step {}, t = {:.6g} s: the MPM zone grew to [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm: {} "
+      "points "
+      "took over {} far-field elements; energy not carried over {:.3g} J of {:.3g} J (kinetic "
+      "{:.3g} J of {:.3g} J)\n",
+      s.step_count(), s.time(), 1e3 * z[0], 1e3 * z[2], 1e3 * z[1], 1e3 * z[3], r->points, r->cells,
+      r->far_field_energy - r->point_energy, r->far_field_energy,
+      r->far_field_kinetic - r->point_kinetic, r->far_field_kinetic);
 }
 
 // energy.csv, the probes and the measures' records; a total energy grown past
@@ -346,9 +368,11 @@ void SceneRun::log_energy() {
   energy_log_->write(s, e);
   probes_->record(s);
   track(s, record_);
-  if (scene_.max_energy_growth > 0 && e.total() - initial_energy_ > scene_.max_energy_growth * std::fabs(initial_energy_))
+  if (scene_.max_energy_growth > 0 &&
+      e.total() - initial_energy_ > scene_.max_energy_growth * std::fabs(initial_energy_))
     s.fail(s.fastest_particle(),
-           fmt::format("the total energy grew by {:.0f}% (run.max_energy_growth = {:.0f}%): the run is unstable; "
+           fmt::format("the total energy grew by {:.0f}% (run.max_energy_growth = {:.0f}%): the "
+                       "run is unstable; "
                        "this particle moves fastest, at {:.4g} m/s",
                        100 * (e.total() / initial_energy_ - 1), 100 * scene_.max_energy_growth,
                        mpm::speed(s.particles(), s.fastest_particle())));
@@ -363,8 +387,10 @@ void SceneRun::write_output() {
   if (history_) try {
       measure_holes();
     } catch (const std::exception& e) {
-      fmt::print(stderr, "hvi: warning: the holes could not be measured at t = {:.6g} s: {}; no more rows in {}\n",
-                 s.time(), e.what(), hole_history_file);
+      fmt::print(
+          stderr,
+          "hvi: warning: the holes could not be measured at t = {:.6g} s: {}; no more rows in {}\n",
+          s.time(), e.what(), hole_history_file);
       history_.reset();
     }
 }
@@ -399,9 +425,11 @@ void SceneRun::checkpoint(double wall) {
 int SceneRun::finish(int code) {
   mpm::Solver& s = *solver_;
   const mpm::EnergyReport e = s.energy();
-  const double balance = initial_energy_ != 0.0 ? (e.total() - initial_energy_) / initial_energy_ : 0.0;
+  const double balance =
+      initial_energy_ != 0.0 ? (e.total() - initial_energy_) / initial_energy_ : 0.0;
   const double rate = particle_steps_ / std::max(wall_, 1e-9);
-  const std::size_t peak_memory = peak_memory_bytes();  // of the run, before the hole measurement reads snapshots
+  const std::size_t peak_memory =
+      peak_memory_bytes();  // of the run, before the hole measurement reads snapshots
   print_result(code, rate, peak_memory, e, balance);
   print_far_field();
   record_.initial_energy = initial_energy_;
@@ -413,7 +441,8 @@ int SceneRun::finish(int code) {
   const bool finished = !stopped_by_signal(code) && at_end();
   const bool stopped_early = stopped_by_signal(code) || (scene_.max_steps > 0 && !at_end());
   toml::table summary_table =
-      summary(stopped_by_signal(code) ? "interrupted" : (finished ? "finished" : "stopped"), rate, peak_memory, balance);
+      summary(stopped_by_signal(code) ? "interrupted" : (finished ? "finished" : "stopped"), rate,
+              peak_memory, balance);
   if (holes_ && finished) measure_final_holes(summary_table, measured, peak_memory);
   toml::table measures;
   for (const auto& [name, value] : measured) measures.insert(name, value);
@@ -425,29 +454,41 @@ int SceneRun::finish(int code) {
     std::ofstream tml(dir_ / "summary.toml");
     tml << toml::toml_formatter(summary_table) << '\n';
   }
-  fmt::print("output: {}  (particles.xmf for ParaView, energy.csv, summary.json, scene.resolved.toml)\n", dir_.string());
+  fmt::print(
+      "output: {}  (particles.xmf for ParaView, energy.csv, summary.json, scene.resolved.toml)\n",
+      dir_.string());
   if (stopped_early) fmt::print("resume with: hvi run --resume {}\n", dir_.string());
   return code;
 }
 
-void SceneRun::print_result(int code, double rate, std::size_t peak_memory, const mpm::EnergyReport& e,
-                            double balance) const {
+void SceneRun::print_result(int code, double rate, std::size_t peak_memory,
+                            const mpm::EnergyReport& e, double balance) const {
   const mpm::Solver& s = *solver_;
-  fmt::print("hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} threads, peak memory {:.0f} MB)\n",
-             stopped_by_signal(code) ? "interrupted" : (at_end() ? "finished" : "stopped (run.max_steps)"), s.time(),
-             s.step_count(), s.step_count() - first_step_, wall_, rate, threads_, peak_memory / 1e6);
+  fmt::print(
+      "hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} "
+      "threads, peak memory {:.0f} MB)\n",
+      stopped_by_signal(code) ? "interrupted" : (at_end() ? "finished" : "stopped (run.max_steps)"),
+      s.time(), s.step_count(), s.step_count() - first_step_, wall_, rate, threads_,
+      peak_memory / 1e6);
   if (options_.resume)
     fmt::print("  wall time of all the invocations that made this run: {}\n",
-               std::isnan(earlier_wall_) ? std::string("unknown (its checkpoint predates the record)")
-                                         : fmt::format("{:.2f} s", earlier_wall_ + wall_));
-  fmt::print("  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated {:.6g} + removed {:.6g}{}{}; balance {:+.3f}%\n",
-             initial_energy_, e.total(), e.kinetic, e.internal, e.dissipated, e.removed,
-             hybrid_ ? fmt::format(" + far field kinetic {:.6g} + strain {:.6g}", e.coupled_kinetic, e.coupled_strain) : "",
-             s.contact() ? fmt::format(" + contact {:.6g}", e.contact) : "", 100 * balance);
-  fmt::print("  momentum (incl. removed): ({:.6g}, {:.6g}, {:.6g}) kg m/s\n", e.momentum[0] + e.removed_momentum[0],
-             e.momentum[1] + e.removed_momentum[1], e.momentum[2] + e.removed_momentum[2]);
+               std::isnan(earlier_wall_)
+                   ? std::string("unknown (its checkpoint predates the record)")
+                   : fmt::format("{:.2f} s", earlier_wall_ + wall_));
+  fmt::print(
+      "  energy: initial {:.6g} J, now {:.6g} J = kinetic {:.6g} + internal {:.6g} + dissipated "
+      "{:.6g} + removed {:.6g}{}{}; balance {:+.3f}%\n",
+      initial_energy_, e.total(), e.kinetic, e.internal, e.dissipated, e.removed,
+      hybrid_ ? fmt::format(" + far field kinetic {:.6g} + strain {:.6g}", e.coupled_kinetic,
+                            e.coupled_strain)
+              : "",
+      s.contact() ? fmt::format(" + contact {:.6g}", e.contact) : "", 100 * balance);
+  fmt::print("  momentum (incl. removed): ({:.6g}, {:.6g}, {:.6g}) kg m/s\n",
+             e.momentum[0] + e.removed_momentum[0], e.momentum[1] + e.removed_momentum[1],
+             e.momentum[2] + e.removed_momentum[2]);
   if (s.removed().particles > 0)
-    fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles, s.removed().mass, e.removed);
+    fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles,
+               s.removed().mass, e.removed);
 }
 
 // The far field's plastic strain and the zone a growing one reached.
@@ -456,36 +497,44 @@ void SceneRun::print_far_field() const {
   const fem::FarField& far = hybrid_->far_field();
   if (far.plastic()) {
     const double alpha = far.max_equivalent_plastic_strain();
-    fmt::print("  far field: largest plastic strain {:.4g}{}{}, plastic work {:.6g} J\n", alpha,
-               scene_.far_field->failing_faces
-                   ? fmt::format(" (facesheets: {:.4g} mm^3 torn)", 1e9 * far.facesheet_failed_volume())
-                   : std::string(),
-               scene_.far_field->yielding_core
-                   ? fmt::format(" (core: {:.4g}{})", far.max_core_plastic_strain(),
-                                 scene_.far_field->failing_core
-                                     ? fmt::format(", {:.4g} mm^3 torn", 1e9 * far.core_failed_volume())
-                                     : std::string())
-                   : std::string(),
-               far.plastic_work());
+    fmt::print(
+        "  far field: largest plastic strain {:.4g}{}{}, plastic work {:.6g} J\n", alpha,
+        scene_.far_field->failing_faces
+            ? fmt::format(" (facesheets: {:.4g} mm^3 torn)", 1e9 * far.facesheet_failed_volume())
+            : std::string(),
+        scene_.far_field->yielding_core
+            ? fmt::format(" (core: {:.4g}{})", far.max_core_plastic_strain(),
+                          scene_.far_field->failing_core
+                              ? fmt::format(", {:.4g} mm^3 torn", 1e9 * far.core_failed_volume())
+                              : std::string())
+            : std::string(),
+        far.plastic_work());
     // Beyond a few percent the damage has reached the zone's edge, which the far field cannot tear
     // (and small-strain J2 stops meaning much).
     if (alpha > 0.05)
-      fmt::print("  warning: the far field's facesheets yield to a plastic strain of {:.3g}{}; the damage reaches "
-                 "the MPM zone's edge: {} would hold it\n",
-                 alpha, far.finite_strain() ? "" : " (small-strain theory)",
-                 hybrid_->growing() ? "a larger limit of [far_field.zone.grow]" : "a larger [far_field] zone, or one that grows,");
+      fmt::print(
+          "  warning: the far field's facesheets yield to a plastic strain of {:.3g}{}; the damage "
+          "reaches "
+          "the MPM zone's edge: {} would hold it\n",
+          alpha, far.finite_strain() ? "" : " (small-strain theory)",
+          hybrid_->growing() ? "a larger limit of [far_field.zone.grow]"
+                             : "a larger [far_field] zone, or one that grows,");
   }
   if (!hybrid_->growing()) return;
   const auto& z = hybrid_->zone();
   const Hybrid::LimitRecord& held = hybrid_->held_at_limit();
-  fmt::print("  MPM zone: [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm, {} far-field elements taken over; {}\n", 1e3 * z[0],
-             1e3 * z[2], 1e3 * z[1], 1e3 * z[3], far.removed_cell_count(),
-             held.steps == 0 ? std::string("the damage never reached a side at its limit")
-                             : fmt::format("the damage held it at its limit ({}) at {} steps, from t = {:.4g} to {:.4g} s",
-                                           side_names(held.sides, z), held.steps, held.first_time, held.last_time));
+  fmt::print(
+      "  MPM zone: [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] mm, {} far-field elements taken over; {}\n",
+      1e3 * z[0], 1e3 * z[2], 1e3 * z[1], 1e3 * z[3], far.removed_cell_count(),
+      held.steps == 0
+          ? std::string("the damage never reached a side at its limit")
+          : fmt::format(
+                "the damage held it at its limit ({}) at {} steps, from t = {:.4g} to {:.4g} s",
+                side_names(held.sides, z), held.steps, held.first_time, held.last_time));
 }
 
-toml::table SceneRun::summary(const char* status, double rate, std::size_t peak_memory, double balance) const {
+toml::table SceneRun::summary(const char* status, double rate, std::size_t peak_memory,
+                              double balance) const {
   const mpm::Solver& s = *solver_;
   toml::table summary{{"time", s.time()},
                       {"steps", s.step_count()},
@@ -500,7 +549,8 @@ toml::table SceneRun::summary(const char* status, double rate, std::size_t peak_
                       {"removed_mass", s.removed().mass},
                       {"status", status}};
   if (!std::isnan(earlier_wall_)) summary.insert("wall_seconds_total", earlier_wall_ + wall_);
-  if (std::any_of(scene_.materials.begin(), scene_.materials.end(), [](const auto& m) { return m.erosion != "none"; })) {
+  if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                  [](const auto& m) { return m.erosion != "none"; })) {
     // What erosion took out of the stress field (the points stay, as point masses).
     const auto& P = s.particles();
     const auto& state = P.field("failed");
@@ -526,7 +576,8 @@ void SceneRun::add_far_field_summary(toml::table& summary) const {
   if (hybrid_->growing()) {  // only when the scene asks for a zone that grows
     const auto& z = hybrid_->zone();
     summary.insert("mpm_zone", toml::array{z[0], z[1], z[2], z[3]});
-    summary.insert("far_field_elements_taken_over", static_cast<std::int64_t>(far.removed_cell_count()));
+    summary.insert("far_field_elements_taken_over",
+                   static_cast<std::int64_t>(far.removed_cell_count()));
     summary.insert("energy_not_carried_over", hybrid_->coupling().converted_energy());
     // Whether the limit, not the damage, stopped the zone: the steps at which the panel's
     // damage reached a side at its limit, and the first and last time it did.
@@ -541,7 +592,8 @@ void SceneRun::add_far_field_summary(toml::table& summary) const {
     summary.insert("far_field_max_plastic_strain", far.max_equivalent_plastic_strain());
     if (scene_.far_field->yielding_core)
       summary.insert("far_field_max_core_plastic_strain", far.max_core_plastic_strain());
-    if (scene_.far_field->failing_core) summary.insert("far_field_core_failed_volume", far.core_failed_volume());
+    if (scene_.far_field->failing_core)
+      summary.insert("far_field_core_failed_volume", far.core_failed_volume());
     if (scene_.far_field->failing_faces)
       summary.insert("far_field_facesheet_failed_volume", far.facesheet_failed_volume());
     summary.insert("far_field_plastic_work", far.plastic_work());
@@ -573,7 +625,8 @@ void SceneRun::measure_final_holes(toml::table& summary, std::map<std::string, d
   }
   // The command's peak: the run's, or the measurement's where that is larger (the kernel's
   // counters can read a fraction of a MB lower after memory was returned).
-  summary.insert("peak_memory_with_measure_bytes", static_cast<std::int64_t>(std::max(peak_memory, peak_memory_bytes())));
+  summary.insert("peak_memory_with_measure_bytes",
+                 static_cast<std::int64_t>(std::max(peak_memory, peak_memory_bytes())));
 }
 
 }  // namespace

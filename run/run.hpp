@@ -6,25 +6,33 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.hpp"
 #include "mpm/solver.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi::driver {
 
 struct RunOptions {
   std::filesystem::path out;
-  int threads = 0;          // 0: the OpenMP default
-  bool overwrite = false;   // replace a previous run in `out`
-  bool resume = false;      // continue the run in `out` from its checkpoint
-  std::string command_line; // recorded in run.json
+  int threads = 0;           // 0: the OpenMP default
+  bool overwrite = false;    // replace a previous run in `out`
+  bool resume = false;       // continue the run in `out` from its checkpoint
+  std::string command_line;  // recorded in run.json
 };
 
 // Exit codes of `hvi run`: 128 + the signal for a run stopped by SIGINT (Ctrl-C) or SIGTERM (what a
 // batch scheduler sends before its time limit), each after a checkpoint.
-enum ExitCode : int { success = 0, input_error = 2, run_failed = 3, interrupted = 130, terminated = 143 };
+enum ExitCode : int {
+  success = 0,
+  input_error = 2,
+  run_failed = 3,
+  interrupted = 130,
+  terminated = 143
+};
 
 // Whether an exit code is that of a run stopped by a signal (and resumable from its checkpoint).
-constexpr bool stopped_by_signal(int code) { return code == interrupted || code == terminated; }
+constexpr bool stopped_by_signal(int code) {
+  return code == interrupted || code == terminated;
+}
 
 // Runs `scene` (for a resume: the run directory's resolved scene, possibly with overrides).
 int run_scene(const scene::Scene& scene, const RunOptions& options);
@@ -39,7 +47,8 @@ std::size_t peak_memory_bytes();
 struct OutputSize {
   double snapshots = 0, snapshot = 0, checkpoint = 0, total = 0;
 };
-OutputSize output_size(const mpm::Solver& solver, const scene::Scene& scene, double next_output, bool fresh);
+OutputSize output_size(const mpm::Solver& solver, const scene::Scene& scene, double next_output,
+                       bool fresh);
 // "1.95 GB", "340 MB", "12 kB".
 std::string format_bytes(double bytes);
 

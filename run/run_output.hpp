@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "run/run.hpp"
 #include "mpm/phase_timer.hpp"
 #include "mpm/solver.hpp"
+#include "run/run.hpp"
 
 namespace hvi::driver {
 
@@ -39,7 +39,8 @@ void report_disk(const std::filesystem::path& dir, const mpm::Solver& s, const s
                  double next_output, bool fresh);
 
 // The first removals in detail, then a count; `reported` carries the count between calls.
-void report_removals(const mpm::Solver& solver, std::vector<mpm::RemovalEvent> events, std::int64_t& reported);
+void report_removals(const mpm::Solver& solver, std::vector<mpm::RemovalEvent> events,
+                     std::int64_t& reported);
 
 void write_text(const std::filesystem::path& path, const std::string& text);
 

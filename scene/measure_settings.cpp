@@ -11,22 +11,32 @@ TableSpec measure_table() {
               .doc = "A quantity measured at the end of the run (summary.json, hvi convergence).",
               .array = true};
   t.string_required("name", "Name of the quantity in the outputs")
-      .choice_required("kind", {"extent_max", "extent_min", "diameter", "field_max", "field_min", "energy_error", "peak_pressure", "holes", "displacement"},
+      .choice_required("kind",
+                       {"extent_max", "extent_min", "diameter", "field_max", "field_min",
+                        "energy_error", "peak_pressure", "holes", "displacement"},
                        "What to measure (see docs/user/studies.md, Measures)")
-      .choice("axis", {"x", "y", "z"}, "z", "Axis of an extent, or of the line a diameter is measured around")
+      .choice("axis", {"x", "y", "z"}, "z",
+              "Axis of an extent, or of the line a diameter is measured around")
       .string("body", "", "Restrict a geometric measure to this body (default: all)")
       .string("field", "", "Particle field of field_max / field_min")
-      .boolean("surface", false, "Extents and diameters reach the surface: half the extreme particle's initial point spacing beyond its centre")
-      .quantity("offset", dims::length, Range{}, 0.0, "Added to an extent or to the radius of a diameter")
-      .optional_quantity("from", dims::length, Range{}, "Diameter: lowest coordinate along the axis of the particles counted")
-      .optional_quantity("to", dims::length, Range{}, "Diameter: highest coordinate along the axis of the particles counted")
+      .boolean("surface", false,
+               "Extents and diameters reach the surface: half the extreme particle's initial point "
+               "spacing beyond its centre")
+      .quantity("offset", dims::length, Range{}, 0.0,
+                "Added to an extent or to the radius of a diameter")
+      .optional_quantity("from", dims::length, Range{},
+                         "Diameter: lowest coordinate along the axis of the particles counted")
+      .optional_quantity("to", dims::length, Range{},
+                         "Diameter: highest coordinate along the axis of the particles counted")
       .vector("center", dims::length, std::vector<double>{0, 0, 0}, "Diameter: a point of the line")
       .boolean("history", false,
-               "Holes: also measure every snapshot as the run writes it, one row each in holes_history.csv "
+               "Holes: also measure every snapshot as the run writes it, one row each in "
+               "holes_history.csv "
                "(the columns of hvi measure's measurements_history.csv)")
       .vector("point", dims::length, std::nullopt,
-              "Displacement: the probe's point in the undeformed configuration; its `axis` component is "
-                       "followed in probes.csv at every energy.csv row");
+              "Displacement: the probe's point in the undeformed configuration; its `axis` "
+              "component is "
+              "followed in probes.csv at every energy.csv row");
   return t;
 }
 
@@ -55,18 +65,25 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
       for (int d = 0; d < 3; ++d) (*m.point)[d] = (*point)[d].value<double>().value();
     }
     if ((m.kind == "displacement") != m.point.has_value())
-      errors.push_back(v.at(path, m.point ? "`point` belongs to a displacement measure"
-                                          : "a displacement measure needs `point`, the probe's undeformed position"));
-    if (!m.body.empty() && std::find(body_names.begin(), body_names.end(), m.body) == body_names.end())
+      errors.push_back(v.at(
+          path, m.point ? "`point` belongs to a displacement measure"
+                        : "a displacement measure needs `point`, the probe's undeformed position"));
+    if (!m.body.empty() &&
+        std::find(body_names.begin(), body_names.end(), m.body) == body_names.end())
       errors.push_back(v.at(path + ".body", fmt::format("no body named '{}'", m.body)));
     if ((m.kind == "field_max" || m.kind == "field_min") && m.field.empty())
       errors.push_back(v.at(path, "a field measure needs `field` (e.g. \"plastic_strain\")"));
     if (m.history && m.kind != "holes")
-      errors.push_back(v.at(path + ".history", "`history` belongs to a holes measure (kind = \"holes\")"));
-    if (m.kind == "holes" && std::any_of(out.begin(), out.end(), [](const auto& o) { return o.kind == "holes"; }))
-      errors.push_back(v.at(path + ".kind", "the holes are measured once per run: a second kind = \"holes\" measure"));
+      errors.push_back(
+          v.at(path + ".history", "`history` belongs to a holes measure (kind = \"holes\")"));
+    if (m.kind == "holes" &&
+        std::any_of(out.begin(), out.end(), [](const auto& o) { return o.kind == "holes"; }))
+      errors.push_back(
+          v.at(path + ".kind",
+               "the holes are measured once per run: a second kind = \"holes\" measure"));
     for (const auto& other : out)
-      if (other.name == m.name) errors.push_back(v.at(path + ".name", "a measure of this name is already defined"));
+      if (other.name == m.name)
+        errors.push_back(v.at(path + ".name", "a measure of this name is already defined"));
     out.push_back(m);
   }
   return out;

@@ -118,7 +118,8 @@ void read_refinements(const toml::table& doc, RunInfo& info) {
 }
 
 // The symmetry planes on x and y, the planes a half or quarter model is mirrored across.
-void read_mirror_planes(const Reader& r, const toml::table& doc, const toml::table& grid, RunInfo& info) {
+void read_mirror_planes(const Reader& r, const toml::table& doc, const toml::table& grid,
+                        RunInfo& info) {
   const toml::array* boundaries = doc["boundary"].as_array();
   if (!boundaries) return;
   for (const auto& node : *boundaries) {

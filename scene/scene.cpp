@@ -47,13 +47,17 @@ void read_grid(const toml::table& t, Scene& s, Checker& c) {
   for (int d = 0; d < 3; ++d) {
     const double cells = (g.upper[d] - g.lower[d]) / g.cell_size;
     if (!(cells > 0)) {
-      c.error("grid.upper", fmt::format("expected upper > lower on every axis; on {} upper = {} m, lower = {} m",
-                                        "xyz"[d], g.upper[d], g.lower[d]));
+      c.error("grid.upper",
+              fmt::format("expected upper > lower on every axis; on {} upper = {} m, lower = {} m",
+                          "xyz"[d], g.upper[d], g.lower[d]));
       continue;
     }
     // A whole number of cells: round up (allowing for decimal round-off) and record the result.
     g.cells[d] = static_cast<int>(std::ceil(cells - 1e-9));
-    if (cells > 4e6) c.error("grid.upper", fmt::format("{:.3g} cells along {} is more than the grid can index (4e6)", cells, "xyz"[d]));
+    if (cells > 4e6)
+      c.error("grid.upper",
+              fmt::format("{:.3g} cells along {} is more than the grid can index (4e6)", cells,
+                          "xyz"[d]));
     // Round-off can leave the snapped bound a hair (< 1e-9 cell) short of the requested one (a
     // cell of 0.4 mm / sqrt(2)^2 = 0.19999999999999998 mm over 18 mm): keep the requested bound
     // then, so what fits the requested grid fits this one.
@@ -74,18 +78,21 @@ void read_boundaries(toml::array& array, Scene& s, Checker& c) {
     b.lower_face = face[1] == '-';
     b.type = text(t, "type");
     const GridSettings& g = s.grid;
-    b.position = optional_number(t, "position").value_or(b.lower_face ? g.lower[b.axis] : g.upper[b.axis]);
+    b.position =
+        optional_number(t, "position").value_or(b.lower_face ? g.lower[b.axis] : g.upper[b.axis]);
     const double index = (b.position - g.lower[b.axis]) / g.cell_size;
     b.plane = static_cast<int>(std::lround(index));
     if (std::fabs(index - b.plane) > 1e-6)
-      c.error(path + ".position",
-              fmt::format("the plane {} = {} m does not lie on grid nodes (cell size {} m from {} m); "
-                          "nearest node planes are {} m and {} m",
-                          face.substr(0, 1), b.position, g.cell_size, g.lower[b.axis],
-                          g.lower[b.axis] + std::floor(index) * g.cell_size,
-                          g.lower[b.axis] + std::ceil(index) * g.cell_size));
+      c.error(
+          path + ".position",
+          fmt::format("the plane {} = {} m does not lie on grid nodes (cell size {} m from {} m); "
+                      "nearest node planes are {} m and {} m",
+                      face.substr(0, 1), b.position, g.cell_size, g.lower[b.axis],
+                      g.lower[b.axis] + std::floor(index) * g.cell_size,
+                      g.lower[b.axis] + std::ceil(index) * g.cell_size));
     else if (b.plane < 0 || b.plane > g.cells[b.axis])
-      c.error(path + ".position", fmt::format("the plane lies outside the grid [{}, {}] m", g.lower[b.axis], g.upper[b.axis]));
+      c.error(path + ".position", fmt::format("the plane lies outside the grid [{}, {}] m",
+                                              g.lower[b.axis], g.upper[b.axis]));
     t.insert_or_assign("position", b.position);
     s.boundaries.push_back(b);
   }
@@ -132,15 +139,19 @@ void read_contact(const toml::table& t, Scene& s, Checker& c) {
     if (found == s.bodies.size())
       c.error("contact.bodies", fmt::format("no body named '{}'; bodies: {}", name, known));
     else if (s.far_field && name.rfind(s.panels.at(s.far_field->panel).name + ".", 0) == 0)
-      c.error("contact.bodies", fmt::format("'{}' is part of the far field's panel, whose finite elements share "
-                                            "the other field's nodes; name the impactor's bodies only", name));
+      c.error("contact.bodies",
+              fmt::format("'{}' is part of the far field's panel, whose finite elements share "
+                          "the other field's nodes; name the impactor's bodies only",
+                          name));
     else if (std::find(contact.bodies.begin(), contact.bodies.end(), found) == contact.bodies.end())
       contact.bodies.push_back(found);
   }
   if (t["bodies"].as_array()->empty())
-    c.error("contact.bodies", fmt::format("expected the impactor's bodies, at least one of {}", known));
+    c.error("contact.bodies",
+            fmt::format("expected the impactor's bodies, at least one of {}", known));
   else if (contact.bodies.size() == s.bodies.size())
-    c.error("contact.bodies", "every body is named: contact needs bodies on both sides; name the impactor's only");
+    c.error("contact.bodies",
+            "every body is named: contact needs bodies on both sides; name the impactor's only");
   s.contact = contact;
 }
 
@@ -163,8 +174,10 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
       const BoxShape box{vec3(*bx, "lower"), vec3(*bx, "upper")};
       for (int d = 0; d < 3; ++d)
         if (!(box.upper[d] > box.lower[d]))
-          c.error(path + ".box.upper", fmt::format("expected upper > lower on every axis; on {} upper = {} m, lower = {} m",
-                                                   "xyz"[d], box.upper[d], box.lower[d]));
+          c.error(
+              path + ".box.upper",
+              fmt::format("expected upper > lower on every axis; on {} upper = {} m, lower = {} m",
+                          "xyz"[d], box.upper[d], box.lower[d]));
       b.shape = box;
     } else if (const auto* cy = t["cylinder"].as_table()) {
       b.shape = CylinderShape{vec3(*cy, "base_center"), axis_index(text(*cy, "axis")),
@@ -173,7 +186,8 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
       b.shape = detail::read_mesh(*me, s.grid);
     }
     b.origin = c.v.at(path + (t["mesh"].as_table() ? ".mesh.file" : ""), "");
-    if (const auto* cl = t["clip"].as_table()) b.clip = BoxShape{vec3(*cl, "lower"), vec3(*cl, "upper")};
+    if (const auto* cl = t["clip"].as_table())
+      b.clip = BoxShape{vec3(*cl, "lower"), vec3(*cl, "upper")};
     auto box = bounds_of(b);
     if (b.clip)
       for (int d = 0; d < 3; ++d) {
@@ -182,8 +196,9 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
       }
     for (int d = 0; d < 3; ++d)
       if (box[0][d] < s.grid.lower[d] || box[1][d] > s.grid.upper[d]) {
-        c.error(path, fmt::format("the body reaches [{}, {}] m along {}, outside the grid [{}, {}] m",
-                                  box[0][d], box[1][d], "xyz"[d], s.grid.lower[d], s.grid.upper[d]));
+        c.error(path,
+                fmt::format("the body reaches [{}, {}] m along {}, outside the grid [{}, {}] m",
+                            box[0][d], box[1][d], "xyz"[d], s.grid.lower[d], s.grid.upper[d]));
         break;
       }
     for (const auto& other : s.bodies)
@@ -211,11 +226,13 @@ void add_warnings(Scene& s) {
     if (!part || part->part != PanelPart::core) continue;
     const MaterialSettings& m = s.materials[b.material];
     if (m.damage == "none" && m.failure == "none")
-      s.warnings.push_back(fmt::format(
-          "body '{}' is a honeycomb core whose material '{}' names no damage or failure model: its walls "
-          "cannot break, so a projectile is channelled by walls that never fail; name damage = \"johnson-cook\" "
-          "(the paper's) or failure = \"max-principal-stress\"",
-          b.name, m.name));
+      s.warnings.push_back(
+          fmt::format("body '{}' is a honeycomb core whose material '{}' names no damage or "
+                      "failure model: its walls "
+                      "cannot break, so a projectile is channelled by walls that never fail; name "
+                      "damage = \"johnson-cook\" "
+                      "(the paper's) or failure = \"max-principal-stress\"",
+                      b.name, m.name));
   }
   for (const auto& b : s.bodies) {
     auto box = bounds_of(b);
@@ -223,18 +240,21 @@ void add_warnings(Scene& s) {
     for (int d = 0; d < 3; ++d) widest = std::max(widest, box[1][d] - box[0][d]);
     const double cells = widest / s.grid.cell_size;
     if (cells < resolved_cells && s.bodies.size() > 1)
-      s.warnings.push_back(fmt::format(
-          "body '{}' is {:.2g} cells across (under {:.0f}): its contact with other bodies is under-resolved "
-          "and can create energy (29% for a 0.4-cell projectile at cfl 0.5); refine the grid or lower "
-          "grid.cfl (1.3% at 0.05)",
-          b.name, cells, resolved_cells));
+      s.warnings.push_back(
+          fmt::format("body '{}' is {:.2g} cells across (under {:.0f}): its contact with other "
+                      "bodies is under-resolved "
+                      "and can create energy (29% for a 0.4-cell projectile at cfl 0.5); refine "
+                      "the grid or lower "
+                      "grid.cfl (1.3% at 0.05)",
+                      b.name, cells, resolved_cells));
   }
   double impact = 0.0;
   for (const auto& a : s.bodies) {
     impact = std::max(impact, std::hypot(a.velocity[0], a.velocity[1], a.velocity[2]));
     for (const auto& b : s.bodies)
-      impact = std::max(impact, std::hypot(a.velocity[0] - b.velocity[0], a.velocity[1] - b.velocity[1],
-                                           a.velocity[2] - b.velocity[2]));
+      impact =
+          std::max(impact, std::hypot(a.velocity[0] - b.velocity[0], a.velocity[1] - b.velocity[1],
+                                      a.velocity[2] - b.velocity[2]));
   }
   for (std::size_t m = 0; m < s.materials.size(); ++m) {
     const MaterialSettings& mat = s.materials[m];
@@ -246,7 +266,8 @@ void add_warnings(Scene& s) {
     const double c = std::sqrt(bulk / h.density);
     if (impact > eos_warning_fraction * c)
       s.warnings.push_back(fmt::format(
-          "material '{}' names no equation of state, but the impact speed {:.4g} m/s is {:.0f}% of its "
+          "material '{}' names no equation of state, but the impact speed {:.4g} m/s is {:.0f}% of "
+          "its "
           "bulk sound speed {:.4g} m/s (above {:.0f}%): its linear bulk response misses shock "
           "compression; name eos = \"mie-gruneisen\"",
           mat.name, impact, 100 * impact / c, c, 100 * eos_warning_fraction));
@@ -283,12 +304,15 @@ Scene resolve(const toml::table& document, const std::string& file) {
     s.measures = read_measures(*r["measure"].as_array(), v, body_names, c.errors);
     for (const auto& m : s.measures)
       if (m.kind == "holes" && m.body.empty() && s.panels.empty())
-        c.error("measure." + m.name, "a holes measure needs a [[panel]], or `body` naming the plate whose hole it measures");
+        c.error(
+            "measure." + m.name,
+            "a holes measure needs a [[panel]], or `body` naming the plate whose hole it measures");
   }
 
   toml::table& output = *s.resolved["output"].as_table();
   s.output_interval = optional_number(output, "interval").value_or(s.end_time / 10);
-  s.checkpoint_interval = optional_number(output, "checkpoint_interval").value_or(s.output_interval);
+  s.checkpoint_interval =
+      optional_number(output, "checkpoint_interval").value_or(s.output_interval);
   s.energy_every = integer(output, "energy_every");
   s.keep_snapshots = integer(output, "keep_snapshots");
   output.insert_or_assign("interval", s.output_interval);
@@ -328,7 +352,8 @@ void apply_overrides(toml::table& document, const std::vector<std::string>& over
   if (!errors.empty()) throw SceneError(errors);
 }
 
-Diagnostic located(const toml::node& node, const std::string& file, std::string key, std::string message) {
+Diagnostic located(const toml::node& node, const std::string& file, std::string key,
+                   std::string message) {
   Diagnostic d;
   d.file = node.source().path ? std::string(*node.source().path) : file;
   d.line = static_cast<int>(node.source().begin.line);
@@ -373,13 +398,15 @@ std::string apply_resolution(toml::table& document, const std::string& file) {
     }
   }
   if (!errors.empty()) throw SceneError(errors);
-  const std::string choice = name_node && name_node->is_string() ? name_node->as_string()->get() : "";
+  const std::string choice =
+      name_node && name_node->is_string() ? name_node->as_string()->get() : "";
   if (!choice.empty()) {
     const toml::table* set = sets.get_as<toml::table>(choice);
     if (!set) {
-      Diagnostic d = located(*name_node, file, "resolution",
-                             fmt::format("the scene defines no [resolutions.{}]; it defines: {}", choice,
-                                         names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+      Diagnostic d =
+          located(*name_node, file, "resolution",
+                  fmt::format("the scene defines no [resolutions.{}]; it defines: {}", choice,
+                              names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
       d.value = fmt::format("\"{}\"", choice);
       throw SceneError({d});
     }
@@ -390,7 +417,8 @@ std::string apply_resolution(toml::table& document, const std::string& file) {
         apply_override(document, assignment,
                        fmt::format("{} [resolutions.{}] {}", file, choice, key.str()));
       } catch (const std::invalid_argument& e) {
-        errors.push_back(located(value, file, fmt::format("resolutions.{}.{}", choice, key.str()), e.what()));
+        errors.push_back(
+            located(value, file, fmt::format("resolutions.{}.{}", choice, key.str()), e.what()));
       }
     }
   }
@@ -399,12 +427,14 @@ std::string apply_resolution(toml::table& document, const std::string& file) {
   return choice;
 }
 
-Scene resolve_document(toml::table document, const std::string& file, const std::vector<std::string>& overrides) {
+Scene resolve_document(toml::table document, const std::string& file,
+                       const std::vector<std::string>& overrides) {
   apply_overrides(document, overrides);  // a --set resolution=<name> picks the set
   const std::string choice = apply_resolution(document, file);
   apply_overrides(document, overrides);  // the command line wins over the set
   Scene scene = resolve(document, file);
-  if (!choice.empty()) scene.resolved.insert_or_assign("resolutions", toml::table{{choice, toml::table{}}});
+  if (!choice.empty())
+    scene.resolved.insert_or_assign("resolutions", toml::table{{choice, toml::table{}}});
   return scene;
 }
 

@@ -13,9 +13,9 @@
 
 #include <toml++/toml.h>
 
+#include "mpm/materials/hydro_material.hpp"
 #include "scene/measure_settings.hpp"
 #include "scene/schema.hpp"
-#include "mpm/materials/hydro_material.hpp"
 
 namespace hvi::scene {
 
@@ -46,7 +46,7 @@ struct BoundarySettings {
   bool lower_face = true;  // x-, y-, z-
   std::string type;        // fixed | symmetry
   double position = 0.0;
-  int plane = 0;           // grid node index of the plane
+  int plane = 0;  // grid node index of the plane
 };
 
 // A material: the models it names and their parameters (scene values over library values).
@@ -80,7 +80,8 @@ struct MeshShape {
   std::string file;    // absolute path (resolved against the scene file's folder)
   double scale = 1.0;  // the file's length unit in m, times the scene's scale
   Vec3 rotate{}, translate{};
-  Vec3 lower{}, upper{};  // until the file is read: the grid (the builder checks the surface against it)
+  Vec3 lower{},
+      upper{};  // until the file is read: the grid (the builder checks the surface against it)
 };
 // One of the three bodies of a [[panel]].
 struct PanelPart {
@@ -106,7 +107,8 @@ struct BodySettings {
 // Scene::bodies as <name>.front, <name>.core, <name>.rear.
 struct PanelSettings {
   std::string name;
-  double front_thickness = 0, rear_thickness = 0, wall_thickness = 0, cell_diameter = 0, core_height = 0;
+  double front_thickness = 0, rear_thickness = 0, wall_thickness = 0, cell_diameter = 0,
+         core_height = 0;
   std::array<double, 2> lower{}, upper{}, pattern_origin{};
   double top = 0, rotation = 0;  // rotation in rad
   std::string origin_at;         // cell-center | vertex | wall
@@ -124,18 +126,23 @@ struct RefinementSettings {
 
 // The hybrid ([far_field]; coupling/): the panel outside `zone` is finite elements.
 struct FarFieldSettings {
-  std::size_t panel = 0;          // index into Scene::panels
-  std::array<double, 4> zone{};   // the MPM zone in plane: x0, y0, x1, y1 (m, on grid planes)
-  std::array<double, 4> extent{}; // the whole panel in plane, cut by its clip (m)
+  std::size_t panel = 0;           // index into Scene::panels
+  std::array<double, 4> zone{};    // the MPM zone in plane: x0, y0, x1, y1 (m, on grid planes)
+  std::array<double, 4> extent{};  // the whole panel in plane, cut by its clip (m)
   int band_elements = 2, core_elements = 8, face_elements = 1;
   double growth = 1.25, max_element = 0.0, safety = 0.9;
   bool clamped_edges = false;
-  bool plastic_faces = false;  // plasticity = "j2" or "failing": the facesheets yield (their Johnson-Cook A, B, n)
-  bool failing_faces = false;  // plasticity = "failing": and tear where their Johnson-Cook damage reaches 1
+  bool plastic_faces =
+      false;  // plasticity = "j2" or "failing": the facesheets yield (their Johnson-Cook A, B, n)
+  bool failing_faces =
+      false;  // plasticity = "failing": and tear where their Johnson-Cook damage reaches 1
   bool finite_strain = false;  // kinematics = "finite": Green-Lagrange strain, P = F S
-  bool strain_rate = false;    // strain_rate = "johnson-cook": J2 facesheets' yield takes eq. (1)'s rate factor
-  bool yielding_core = false;  // core = "yielding" or "failing": its out-of-plane stresses capped (walls' Johnson-Cook A)
-  bool failing_core = false;   // core = "failing": and dropped to zero where the walls' Johnson-Cook damage reaches 1
+  bool strain_rate =
+      false;  // strain_rate = "johnson-cook": J2 facesheets' yield takes eq. (1)'s rate factor
+  bool yielding_core = false;  // core = "yielding" or "failing": its out-of-plane stresses capped
+                               // (walls' Johnson-Cook A)
+  bool failing_core = false;  // core = "failing": and dropped to zero where the walls' Johnson-Cook
+                              // damage reaches 1
   // [far_field.zone.grow]: the zone grows over the far field where the panel's damage reaches its
   // edge (coupling/zone_growth.hpp); none: a fixed zone.
   struct Grow {

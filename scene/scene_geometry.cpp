@@ -9,7 +9,8 @@
 
 namespace hvi::scene::detail {
 
-std::optional<std::size_t> find_material(const Scene& s, const std::string& name, std::string* problem) {
+std::optional<std::size_t> find_material(const Scene& s, const std::string& name,
+                                         std::string* problem) {
   for (std::size_t m = 0; m < s.materials.size(); ++m)
     if (s.materials[m].name == name) return m;
   std::string names;
@@ -162,7 +163,8 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
       BodySettings b;
       b.name = p.name + "." + parts[part];
       std::string problem;
-      if (const auto m = find_material(s, text(t, fmt::format("{}_material", parts[part]).c_str()), &problem))
+      if (const auto m =
+              find_material(s, text(t, fmt::format("{}_material", parts[part]).c_str()), &problem))
         b.material = *m;
       else
         error(fmt::format("{}.{}_material", path, parts[part]), problem);
@@ -185,7 +187,8 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
 namespace {
 
 // [far_field.zone.grow] of a far field whose zone was read and checked.
-void read_zone_growth(const toml::table& t, Scene& s, const Validated& v, std::vector<Diagnostic>& errors) {
+void read_zone_growth(const toml::table& t, Scene& s, const Validated& v,
+                      std::vector<Diagnostic>& errors) {
   auto error = [&](const std::string& key, std::string message) {
     errors.push_back(v.at("far_field.zone.grow." + key, std::move(message)));
   };
@@ -197,30 +200,37 @@ void read_zone_growth(const toml::table& t, Scene& s, const Validated& v, std::v
   g.step = t["step"].value<double>().value_or(8 * h);
   g.margin = t["margin"].value<double>().value_or(4 * h);
   g.damage = number(t, "damage");
-  auto& resolved = *(*s.resolved["far_field"].as_table())["zone"].as_table()->get_as<toml::table>("grow");
+  auto& resolved =
+      *(*s.resolved["far_field"].as_table())["zone"].as_table()->get_as<toml::table>("grow");
   resolved.insert_or_assign("step", g.step);
   resolved.insert_or_assign("margin", g.margin);
   for (int d = 0; d < 2; ++d) {
     const double l0 = g.limit[d], l1 = g.limit[2 + d];
     if (!(f.extent[d] <= l0 && l0 <= f.zone[d] && f.zone[2 + d] <= l1 && l1 <= f.extent[2 + d])) {
-      error(f.extent[d] <= l0 && l0 <= f.zone[d] ? "upper" : "lower",
-            fmt::format("the limit's {} range [{}, {}] m must hold the zone's [{}, {}] m and lie inside the "
-                        "panel's [{}, {}] m", "xy"[d], l0, l1, f.zone[d], f.zone[2 + d], f.extent[d], f.extent[2 + d]));
+      error(
+          f.extent[d] <= l0 && l0 <= f.zone[d] ? "upper" : "lower",
+          fmt::format(
+              "the limit's {} range [{}, {}] m must hold the zone's [{}, {}] m and lie inside the "
+              "panel's [{}, {}] m",
+              "xy"[d], l0, l1, f.zone[d], f.zone[2 + d], f.extent[d], f.extent[2 + d]));
       continue;
     }
     for (int side = 0; side < 2; ++side) {
       const double x = g.limit[2 * side + d], cells = (x - s.grid.lower[d]) / h;
       if (std::abs(cells - std::round(cells)) > 1e-9)
-        error(side ? "upper" : "lower",
-              fmt::format("the limit's {} bound {} m is not on a grid plane (grid lower {} m, cell {} m): the zone "
-                          "grows by whole cells", "xy"[d], x, s.grid.lower[d], h));
+        error(side ? "upper" : "lower", fmt::format("the limit's {} bound {} m is not on a grid "
+                                                    "plane (grid lower {} m, cell {} m): the zone "
+                                                    "grows by whole cells",
+                                                    "xy"[d], x, s.grid.lower[d], h));
     }
-    const double lo = std::max(f.extent[d], l0 - f.band_elements * h), hi = std::min(f.extent[2 + d], l1 + f.band_elements * h);
+    const double lo = std::max(f.extent[d], l0 - f.band_elements * h),
+                 hi = std::min(f.extent[2 + d], l1 + f.band_elements * h);
     if (lo < s.grid.lower[d] - 1e-9 * h || hi > s.grid.upper[d] + 1e-9 * h)
       error(lo < s.grid.lower[d] - 1e-9 * h ? "lower" : "upper",
-            fmt::format("the limit and its band of {} cells reach [{}, {}] m along {}, outside the grid [{}, {}] m: "
-                        "the grown zone's band is tied to grid nodes", f.band_elements, lo, hi, "xy"[d],
-                        s.grid.lower[d], s.grid.upper[d]));
+            fmt::format("the limit and its band of {} cells reach [{}, {}] m along {}, outside the "
+                        "grid [{}, {}] m: "
+                        "the grown zone's band is tied to grid nodes",
+                        f.band_elements, lo, hi, "xy"[d], s.grid.lower[d], s.grid.upper[d]));
   }
   const double cells = g.step / h;
   if (std::abs(cells - std::round(cells)) > 1e-9)
@@ -229,12 +239,17 @@ void read_zone_growth(const toml::table& t, Scene& s, const Validated& v, std::v
   // must model that.
   bool damaging = false;
   for (const auto& b : s.bodies)
-    if (const auto* part = std::get_if<PanelPart>(&b.shape); part && part->panel == f.panel && b.material < s.materials.size())
-      damaging = damaging || s.materials[b.material].models.damage || s.materials[b.material].models.max_principal_stress ||
+    if (const auto* part = std::get_if<PanelPart>(&b.shape);
+        part && part->panel == f.panel && b.material < s.materials.size())
+      damaging = damaging || s.materials[b.material].models.damage ||
+                 s.materials[b.material].models.max_principal_stress ||
                  s.materials[b.material].models.tuler_butcher;
   if (!damaging)
-    error("damage", fmt::format("the zone grows where panel '{}' is damaged, but none of its materials names "
-                                "damage = \"johnson-cook\" or a max-principal-stress or tuler-butcher failure", s.panels[f.panel].name));
+    error(
+        "damage",
+        fmt::format("the zone grows where panel '{}' is damaged, but none of its materials names "
+                    "damage = \"johnson-cook\" or a max-principal-stress or tuler-butcher failure",
+                    s.panels[f.panel].name));
   f.grow = g;
 }
 
@@ -265,9 +280,10 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
   f.finite_strain = text(t, "kinematics") == "finite";
   f.strain_rate = text(t, "strain_rate") == "johnson-cook";
   if (f.strain_rate && !f.plastic_faces)
-    error("strain_rate", "\"johnson-cook\" sets the rate factor of the facesheets' J2 yield stress; "
-                         "plasticity = \"none\" has none: expected plasticity = \"j2\" or \"failing\", "
-                         "or strain_rate = \"reference\"");
+    error("strain_rate",
+          "\"johnson-cook\" sets the rate factor of the facesheets' J2 yield stress; "
+          "plasticity = \"none\" has none: expected plasticity = \"j2\" or \"failing\", "
+          "or strain_rate = \"reference\"");
   f.failing_core = text(t, "core") == "failing";
   f.yielding_core = f.failing_core || text(t, "core") == "yielding";
   // J2 facesheets and a yielding core take their materials' Johnson-Cook strength (hardening, or
@@ -280,57 +296,82 @@ void read_far_field(const toml::table& t, Scene& s, const Validated& v,
     const bool core = part->part == PanelPart::core;
     const MaterialSettings& m = s.materials[b.material];
     if (core && f.failing_core && !m.models.damage)
-      error("core", fmt::format("\"failing\" tears the core's walls where their Johnson-Cook damage reaches 1; "
-                                "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or core = \"yielding\"",
-                                m.name, b.name, m.damage));
+      error("core",
+            fmt::format(
+                "\"failing\" tears the core's walls where their Johnson-Cook damage reaches 1; "
+                "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or core = \"yielding\"",
+                m.name, b.name, m.damage));
     if (!core && f.failing_faces && !m.models.damage)
-      error("plasticity", fmt::format("\"failing\" tears the facesheets where their Johnson-Cook damage reaches 1; "
-                                      "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or plasticity = \"j2\"",
-                                      m.name, b.name, m.damage));
-    if (!(core ? f.yielding_core : f.plastic_faces) || m.models.johnson_cook || (!core && b.material == reported))
+      error("plasticity",
+            fmt::format(
+                "\"failing\" tears the facesheets where their Johnson-Cook damage reaches 1; "
+                "'{}' ({}) names damage = \"{}\": expected \"johnson-cook\" or plasticity = \"j2\"",
+                m.name, b.name, m.damage));
+    if (!(core ? f.yielding_core : f.plastic_faces) || m.models.johnson_cook ||
+        (!core && b.material == reported))
       continue;
     if (!core) reported = b.material;
     if (core)
-      error("core", fmt::format("\"{}\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
-                                "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
-                                f.failing_core ? "failing" : "yielding", m.name, b.name, m.strength));
+      error(
+          "core",
+          fmt::format(
+              "\"{}\" caps the core's stresses at its walls' yield, their Johnson-Cook A; "
+              "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or core = \"elastic\"",
+              f.failing_core ? "failing" : "yielding", m.name, b.name, m.strength));
     else
-      error("plasticity", fmt::format("\"{}\" hardens the facesheets as their material's Johnson-Cook strength; "
-                                      "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or plasticity = \"none\"",
-                                      f.failing_faces ? "failing" : "j2", m.name, b.name, m.strength));
+      error("plasticity",
+            fmt::format("\"{}\" hardens the facesheets as their material's Johnson-Cook strength; "
+                        "'{}' ({}) names strength = \"{}\": expected \"johnson-cook\" or "
+                        "plasticity = \"none\"",
+                        f.failing_faces ? "failing" : "j2", m.name, b.name, m.strength));
   }
   const double h = s.grid.cell_size;
-  f.max_element = t["max_element"].value<double>().value_or(6.0 * std::min(p.front_thickness, p.rear_thickness));
+  f.max_element = t["max_element"].value<double>().value_or(
+      6.0 * std::min(p.front_thickness, p.rear_thickness));
   s.resolved["far_field"].as_table()->insert_or_assign("max_element", f.max_element);
   if (f.max_element < h)
-    error("max_element", fmt::format("{} m is smaller than a grid cell ({} m): the far field's elements are "
-                                     "at least one cell long", f.max_element, h));
+    error("max_element",
+          fmt::format("{} m is smaller than a grid cell ({} m): the far field's elements are "
+                      "at least one cell long",
+                      f.max_element, h));
   const double quarter_turns = p.rotation / (std::numbers::pi / 2);
   if (p.double_walls && std::abs(quarter_turns - std::round(quarter_turns)) > 1e-9)
-    error("panel", fmt::format("panel '{}' has double walls and its cells turned by {} deg: the far field's core "
-                               "takes its shear moduli along and across the ribbon on the panel's axes, so the "
-                               "rotation must be a multiple of 90 deg", p.name, p.rotation * 180 / std::numbers::pi));
+    error("panel",
+          fmt::format(
+              "panel '{}' has double walls and its cells turned by {} deg: the far field's core "
+              "takes its shear moduli along and across the ribbon on the panel's axes, so the "
+              "rotation must be a multiple of 90 deg",
+              p.name, p.rotation * 180 / std::numbers::pi));
   for (int d = 0; d < 2; ++d) {
     const double z0 = f.zone[d], z1 = f.zone[2 + d], a = f.extent[d], b = f.extent[2 + d];
     if (!(a <= z0 && z0 < z1 && z1 <= b)) {
-      error("zone", fmt::format("the zone's {} range [{}, {}] m must lie inside the panel's [{}, {}] m "
-                                "(its extent cut by its clip)", "xy"[d], z0, z1, a, b));
+      error("zone",
+            fmt::format("the zone's {} range [{}, {}] m must lie inside the panel's [{}, {}] m "
+                        "(its extent cut by its clip)",
+                        "xy"[d], z0, z1, a, b));
       continue;
     }
     for (double z : {z0, z1}) {
       const double cells = (z - s.grid.lower[d]) / h;
       if (std::abs(cells - std::round(cells)) > 1e-9)
-        error("zone", fmt::format("the zone's {} bound {} m is not on a grid plane (grid lower {} m, cell {} m): "
-                                  "the interface nodes must be grid nodes", "xy"[d], z, s.grid.lower[d], h));
+        error("zone",
+              fmt::format(
+                  "the zone's {} bound {} m is not on a grid plane (grid lower {} m, cell {} m): "
+                  "the interface nodes must be grid nodes",
+                  "xy"[d], z, s.grid.lower[d], h));
     }
     // The band's nodes tie to grid nodes: the grid must hold the zone and the band.
-    const double lo = std::max(a, z0 - f.band_elements * h), hi = std::min(b, z1 + f.band_elements * h);
+    const double lo = std::max(a, z0 - f.band_elements * h),
+                 hi = std::min(b, z1 + f.band_elements * h);
     if (lo < s.grid.lower[d] - 1e-9 * h || hi > s.grid.upper[d] + 1e-9 * h)
-      error("zone", fmt::format("the zone and its band of {} cells reach [{}, {}] m along {}, outside the grid "
-                                "[{}, {}] m: the band's far-field nodes are tied to grid nodes",
-                                f.band_elements, lo, hi, "xy"[d], s.grid.lower[d], s.grid.upper[d]));
+      error("zone",
+            fmt::format(
+                "the zone and its band of {} cells reach [{}, {}] m along {}, outside the grid "
+                "[{}, {}] m: the band's far-field nodes are tied to grid nodes",
+                f.band_elements, lo, hi, "xy"[d], s.grid.lower[d], s.grid.upper[d]));
   }
-  if (const toml::table* grow = (*t["zone"].as_table())["grow"].as_table()) read_zone_growth(*grow, s, v, errors);
+  if (const toml::table* grow = (*t["zone"].as_table())["grow"].as_table())
+    read_zone_growth(*grow, s, v, errors);
 }
 
 void read_refinements(const toml::array& zones, Scene& s, const Validated& v,

@@ -15,7 +15,8 @@ namespace hvi::scene::detail {
 // Rewrites each [[body]] mesh.file as an absolute path (relative paths are relative to the folder
 // of `scene_file`) so that the resolved scene, read back from a run directory, finds it too.
 // The index of the [[material]] named `name`, or a message naming the defined ones.
-std::optional<std::size_t> find_material(const Scene& s, const std::string& name, std::string* problem);
+std::optional<std::size_t> find_material(const Scene& s, const std::string& name,
+                                         std::string* problem);
 
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
                         std::vector<Diagnostic>& errors);

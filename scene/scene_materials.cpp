@@ -26,9 +26,11 @@ class ParameterSource {
     } else if (library_value) {
       v = *library_value;
     } else {
-      c_.error(path_, fmt::format("missing parameter '{}'{}", key,
-                                  library_.empty() ? " (give it, or name a library material that has it)"
-                                                   : fmt::format(" (library material '{}' has none)", library_)));
+      c_.error(path_,
+               fmt::format("missing parameter '{}'{}", key,
+                           library_.empty()
+                               ? " (give it, or name a library material that has it)"
+                               : fmt::format(" (library material '{}' has none)", library_)));
     }
     table_.insert_or_assign(key, v);
     return v;
@@ -60,12 +62,15 @@ class MaterialReader {
     h_.shear_strength = m_.strength != "none";
     ParameterSource top(t_, path_, m_.library, c_);
     h_.density = top.get("density", L_ ? std::optional(L_->density) : std::nullopt);
-    h_.youngs_modulus = top.get("youngs_modulus", L_ ? std::optional(L_->youngs_modulus) : std::nullopt);
-    h_.poisson_ratio = top.get("poisson_ratio", L_ ? std::optional(L_->poisson_ratio) : std::nullopt);
+    h_.youngs_modulus =
+        top.get("youngs_modulus", L_ ? std::optional(L_->youngs_modulus) : std::nullopt);
+    h_.poisson_ratio =
+        top.get("poisson_ratio", L_ ? std::optional(L_->poisson_ratio) : std::nullopt);
   }
 
   void strength() {
-    auto* jt = model_table("johnson_cook", m_.strength == "johnson-cook", "strength", "johnson-cook");
+    auto* jt =
+        model_table("johnson_cook", m_.strength == "johnson-cook", "strength", "johnson-cook");
     if (!jt) return;
     ParameterSource p(*jt, path_ + ".johnson_cook", m_.library, c_);
     const auto& lj = L_ ? L_->johnson_cook : std::nullopt;
@@ -75,12 +80,16 @@ class MaterialReader {
     jc.n = p.get("n", from(lj, [](auto& x) { return x.n; }));
     jc.C = p.get("C", from(lj, [](auto& x) { return x.C; }));
     jc.m = p.get("m", from(lj, [](auto& x) { return x.m; }));
-    jc.melt_temperature = p.get("melt_temperature", from(lj, [](auto& x) { return x.melt_temperature; }));
-    jc.room_temperature = p.get("room_temperature", from(lj, [](auto& x) { return x.room_temperature; }));
+    jc.melt_temperature =
+        p.get("melt_temperature", from(lj, [](auto& x) { return x.melt_temperature; }));
+    jc.room_temperature =
+        p.get("room_temperature", from(lj, [](auto& x) { return x.room_temperature; }));
     jc.reference_strain_rate =
-        p.get("reference_strain_rate", lj ? std::optional(lj->reference_strain_rate) : std::optional(1.0));
+        p.get("reference_strain_rate",
+              lj ? std::optional(lj->reference_strain_rate) : std::optional(1.0));
     if (!(jc.melt_temperature > jc.room_temperature))
-      c_.error(path_ + ".johnson_cook.melt_temperature", "expected melt_temperature > room_temperature");
+      c_.error(path_ + ".johnson_cook.melt_temperature",
+               "expected melt_temperature > room_temperature");
     h_.johnson_cook = jc;
   }
 
@@ -108,7 +117,8 @@ class MaterialReader {
   }
 
   void damage() {
-    auto* dt = model_table("johnson_cook_damage", m_.damage == "johnson-cook", "damage", "johnson-cook");
+    auto* dt =
+        model_table("johnson_cook_damage", m_.damage == "johnson-cook", "damage", "johnson-cook");
     if (!dt) return;
     ParameterSource p(*dt, path_ + ".johnson_cook_damage", m_.library, c_);
     const auto& ld = L_ ? L_->damage : std::nullopt;
@@ -119,19 +129,23 @@ class MaterialReader {
     d.D4 = p.get("D4", from(ld, [](auto& x) { return x.D4; }));
     d.D5 = p.get("D5", from(ld, [](auto& x) { return x.D5; }));
     d.reference_strain_rate =
-        p.get("reference_strain_rate", ld ? std::optional(ld->reference_strain_rate) : std::optional(1.0));
+        p.get("reference_strain_rate",
+              ld ? std::optional(ld->reference_strain_rate) : std::optional(1.0));
     if (m_.strength != "johnson-cook")
-      c_.error(path_ + ".damage", "johnson-cook damage accumulates plastic strain: it needs strength = \"johnson-cook\"");
+      c_.error(
+          path_ + ".damage",
+          "johnson-cook damage accumulates plastic strain: it needs strength = \"johnson-cook\"");
     h_.damage = d;
   }
 
   void failure() {
-    if (auto* ft = model_table("max_principal_stress", m_.failure == "max-principal-stress", "failure",
-                               "max-principal-stress")) {
+    if (auto* ft = model_table("max_principal_stress", m_.failure == "max-principal-stress",
+                               "failure", "max-principal-stress")) {
       ParameterSource p(*ft, path_ + ".max_principal_stress", m_.library, c_);
       h_.max_principal_stress = p.get("limit", L_ ? L_->max_principal_stress : std::nullopt);
     }
-    if (auto* tt = model_table("tuler_butcher", m_.failure == "tuler-butcher", "failure", "tuler-butcher")) {
+    if (auto* tt = model_table("tuler_butcher", m_.failure == "tuler-butcher", "failure",
+                               "tuler-butcher")) {
       ParameterSource p(*tt, path_ + ".tuler_butcher", m_.library, c_);
       materials::TulerButcher tb;
       tb.threshold = p.get("threshold", L_ ? L_->max_principal_stress : std::nullopt);
@@ -142,33 +156,39 @@ class MaterialReader {
   }
 
   void erosion() {
-    if (auto* et = model_table("compression_erosion", m_.erosion == "compression", "erosion", "compression"))
+    if (auto* et = model_table("compression_erosion", m_.erosion == "compression", "erosion",
+                               "compression"))
       h_.erosion = mpm::CompressionErosion{(*et)["min_volume_ratio"].value<double>().value()};
   }
 
   void heating() {
-    if (auto* ht = model_table("adiabatic_heating", m_.heating == "adiabatic", "heating", "adiabatic")) {
+    if (auto* ht =
+            model_table("adiabatic_heating", m_.heating == "adiabatic", "heating", "adiabatic")) {
       ParameterSource p(*ht, path_ + ".adiabatic_heating", m_.library, c_);
       mpm::AdiabaticHeating heat;
       heat.specific_heat = p.get("specific_heat", lib_ ? lib_->specific_heat : std::nullopt);
       heat.taylor_quinney = (*ht)["taylor_quinney"].value<double>().value();
       if (m_.strength != "johnson-cook")
-        c_.error(path_ + ".heating", "adiabatic heating comes from plastic work: it needs strength = \"johnson-cook\"");
+        c_.error(path_ + ".heating",
+                 "adiabatic heating comes from plastic work: it needs strength = \"johnson-cook\"");
       h_.heating = heat;
     }
     h_.initial_temperature = t_["initial_temperature"].value<double>().value_or(
-        L_ ? L_->initial_temperature : (h_.johnson_cook ? h_.johnson_cook->room_temperature : 293.0));
+        L_ ? L_->initial_temperature
+           : (h_.johnson_cook ? h_.johnson_cook->room_temperature : 293.0));
     t_.insert_or_assign("initial_temperature", h_.initial_temperature);
   }
 
  private:
   // One parameter table per model: kept (and completed) for the named models, refused for the
   // others when the scene wrote it.
-  toml::table* model_table(const char* key, bool named, const char* model_key, const char* model_name) {
+  toml::table* model_table(const char* key, bool named, const char* model_key,
+                           const char* model_name) {
     const std::string table_path = path_ + "." + key;
     if (!named) {
       if (c_.v.locations.count(table_path))
-        c_.error(table_path, fmt::format("parameters for a model the material does not name; set {} = \"{}\" or remove the table",
+        c_.error(table_path, fmt::format("parameters for a model the material does not name; set "
+                                         "{} = \"{}\" or remove the table",
                                          model_key, model_name));
       t_.erase(key);
       return nullptr;
@@ -196,7 +216,8 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     MaterialSettings m;
     m.name = text(t, "name");
     for (const auto& other : s.materials)
-      if (other.name == m.name) c.error(path + ".name", "a material of this name is already defined");
+      if (other.name == m.name)
+        c.error(path + ".name", "a material of this name is already defined");
     m.library = t["library"].value_or(std::string{});
     m.strength = text(t, "strength");
     m.eos = text(t, "eos");

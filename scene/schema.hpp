@@ -33,11 +33,11 @@ struct Range {
   bool contains(double v) const;
   std::string describe() const;  // "> 0", "in [0, 1]", "in (0, 1]", ">= 1"
 };
-Range positive();                        // > 0
-Range non_negative();                    // >= 0
-Range closed(double lo, double hi);      // [lo, hi]
-Range left_open(double lo, double hi);   // (lo, hi]
-Range right_open(double lo, double hi);  // [lo, hi)
+Range positive();                           // > 0
+Range non_negative();                       // >= 0
+Range closed(double lo, double hi);         // [lo, hi]
+Range left_open(double lo, double hi);      // (lo, hi]
+Range right_open(double lo, double hi);     // [lo, hi)
 Range open_interval(double lo, double hi);  // (lo, hi)
 
 struct Key {
@@ -127,7 +127,8 @@ Validated validate(const toml::table& document, const TableSpec& root, const std
 // no '=', has an empty path component, or names an array element or table that does not exist.
 void apply_override(toml::table& document, const std::string& assignment);
 // The same with the diagnostics' source named `source` (e.g. "scene.toml [resolutions.coarse]").
-void apply_override(toml::table& document, const std::string& assignment, const std::string& source);
+void apply_override(toml::table& document, const std::string& assignment,
+                    const std::string& source);
 
 // Markdown reference of every key (for `hvi keys` and docs/user/scene_keys.md).
 std::string markdown_reference(const TableSpec& root);

@@ -83,7 +83,8 @@ void apply_override(toml::table& document, const std::string& assignment) {
   apply_override(document, assignment, "--set " + assignment);
 }
 
-void apply_override(toml::table& document, const std::string& assignment, const std::string& source) {
+void apply_override(toml::table& document, const std::string& assignment,
+                    const std::string& source) {
   const std::size_t eq = assignment.find('=');
   if (eq == std::string::npos) {
     throw std::invalid_argument(

@@ -33,12 +33,18 @@ struct UnitDef {
 };
 
 constexpr std::array kUnits{
-    UnitDef{"m", 0, 1.0, dims::length, true},   UnitDef{"g", -3, 1.0, dims::mass, true},
-    UnitDef{"s", 0, 1.0, dims::time, true},     UnitDef{"K", 0, 1.0, dims::temperature, false},
-    UnitDef{"N", 0, 1.0, kForce, true},         UnitDef{"Pa", 0, 1.0, dims::pressure, true},
-    UnitDef{"J", 0, 1.0, dims::energy, true},   UnitDef{"W", 0, 1.0, kPower, true},
-    UnitDef{"Hz", 0, 1.0, dims::rate, true},    UnitDef{"bar", 5, 1.0, dims::pressure, true},
-    UnitDef{"min", 0, 60.0, dims::time, false}, UnitDef{"h", 0, 3600.0, dims::time, false},
+    UnitDef{"m", 0, 1.0, dims::length, true},
+    UnitDef{"g", -3, 1.0, dims::mass, true},
+    UnitDef{"s", 0, 1.0, dims::time, true},
+    UnitDef{"K", 0, 1.0, dims::temperature, false},
+    UnitDef{"N", 0, 1.0, kForce, true},
+    UnitDef{"Pa", 0, 1.0, dims::pressure, true},
+    UnitDef{"J", 0, 1.0, dims::energy, true},
+    UnitDef{"W", 0, 1.0, kPower, true},
+    UnitDef{"Hz", 0, 1.0, dims::rate, true},
+    UnitDef{"bar", 5, 1.0, dims::pressure, true},
+    UnitDef{"min", 0, 60.0, dims::time, false},
+    UnitDef{"h", 0, 3600.0, dims::time, false},
     // Angles are dimensionless; SI is the radian.
     UnitDef{"deg", 0, std::numbers::pi / 180.0, dims::none, false},
     UnitDef{"rad", 0, 1.0, dims::none, false},

@@ -12,11 +12,11 @@ namespace hvi::mpm::io {
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kind_prefix = "kind:";     // attribute kind:<name> = FieldKind
+const std::string kind_prefix = "kind:";      // attribute kind:<name> = FieldKind
 const std::string output_prefix = "output:";  // attribute output:<name> = 1 if snapshots hold it
 const std::string extra_prefix = "extra:";
 const std::string coupled_prefix = "coupled_";  // datasets of the couplings' state
-const std::string field_order = "field_order";   // attribute: the fields' names in declaration order
+const std::string field_order = "field_order";  // attribute: the fields' names in declaration order
 }  // namespace
 
 std::size_t checkpoint_bytes(const Solver& solver) {
@@ -62,7 +62,8 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
       file.write_attribute("removed_momentum_" + std::to_string(d), s.removed.momentum[d]);
     for (const auto& [key, value] : extras) file.write_attribute(extra_prefix + key, value);
     for (auto* c : solver.couplings())
-      for (const auto& [name, data] : c->state()) file.write(coupled_prefix + name, data.data(), data.size(), 1);
+      for (const auto& [name, data] : c->state())
+        file.write(coupled_prefix + name, data.data(), data.size(), 1);
     file.close();
   }
   fs::rename(tmp, path);
@@ -89,9 +90,11 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
       const std::string field = name.substr(6);
       const auto kind = static_cast<FieldKind>(file.read_integer_attribute(kind_prefix + field));
       // A field the snapshots did not hold (e.g. eos_pressure) stays out of them after a resume.
-      const bool output = file.has_attribute(output_prefix + field) ? file.read_integer_attribute(output_prefix + field) != 0
-                                                                    : field != "gimp_half_width";
-      std::vector<double>& data = P.has_field(field) ? P.field(field) : P.add_field(field, kind, "", 0.0, output);
+      const bool output = file.has_attribute(output_prefix + field)
+                              ? file.read_integer_attribute(output_prefix + field) != 0
+                              : field != "gimp_half_width";
+      std::vector<double>& data =
+          P.has_field(field) ? P.field(field) : P.add_field(field, kind, "", 0.0, output);
       data = file.read_doubles(name);
     } else if (name.rfind("int_", 0) == 0) {
       const std::string field = name.substr(4);
@@ -108,17 +111,19 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
   s.removed.mass = file.read_double_attribute("removed_mass");
   s.removed.kinetic = file.read_double_attribute("removed_kinetic");
   s.removed.internal = file.read_double_attribute("removed_internal");
-  if (file.has_attribute("contact_work")) s.contact_work = file.read_double_attribute("contact_work");
+  if (file.has_attribute("contact_work"))
+    s.contact_work = file.read_double_attribute("contact_work");
   for (int d = 0; d < 3; ++d)
     s.removed.momentum[d] = file.read_double_attribute("removed_momentum_" + std::to_string(d));
   for (auto* c : solver.couplings())
     for (const auto& [name, data] : c->state()) {
       if (!file.has_dataset(coupled_prefix + name))
-        throw Hdf5Error(path.string() + " holds no " + name + ": it was written by a run without this coupled model");
+        throw Hdf5Error(path.string() + " holds no " + name +
+                        ": it was written by a run without this coupled model");
       const std::vector<double> saved = file.read_doubles(coupled_prefix + name);
       if (saved.size() != data.size())
-        throw Hdf5Error(path.string() + ": " + name + " has " + std::to_string(saved.size()) + " values, this scene's " +
-                        std::to_string(data.size()));
+        throw Hdf5Error(path.string() + ": " + name + " has " + std::to_string(saved.size()) +
+                        " values, this scene's " + std::to_string(data.size()));
       std::copy(saved.begin(), saved.end(), data.begin());
     }
   solver.restore(s);

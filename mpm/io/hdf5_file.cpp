@@ -32,7 +32,8 @@ std::string reason() {
         const std::string tag = "error message = '";
         if (const auto at = desc.find(tag); at != std::string::npos) {
           const auto end = desc.find('\'', at + tag.size());
-          f.system = desc.substr(at + tag.size(), end == std::string::npos ? end : end - at - tag.size());
+          f.system =
+              desc.substr(at + tag.size(), end == std::string::npos ? end : end - at - tag.size());
         }
         return 0;
       },
@@ -57,13 +58,15 @@ void check_status(herr_t status, const std::string& what, const std::string& pat
 void write_dataset(hid_t file, const std::string& path, const std::string& name, hid_t type,
                    const void* data, std::size_t rows, std::size_t columns) {
   const hsize_t dims[2] = {rows, columns};
-  Handle space{check(H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr), "create dataspace", path),
-               H5Sclose};
+  Handle space{
+      check(H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr), "create dataspace", path),
+      H5Sclose};
   Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
   H5Pset_obj_track_times(dcpl.id, false);
-  Handle set{check(H5Dcreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT),
-                   "create dataset '" + name + "'", path),
-             H5Dclose};
+  Handle set{
+      check(H5Dcreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT),
+            "create dataset '" + name + "'", path),
+      H5Dclose};
   if (rows * columns > 0)
     check_status(H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
                  "write dataset '" + name + "'", path);
@@ -160,8 +163,9 @@ std::vector<std::string> Hdf5File::dataset_names() const {
 }
 
 std::pair<std::size_t, std::size_t> Hdf5File::shape(const std::string& name) const {
-  Handle set{check(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path_),
-             H5Dclose};
+  Handle set{
+      check(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path_),
+      H5Dclose};
   Handle space{H5Dget_space(set.id), H5Sclose};
   hsize_t dims[2] = {0, 1};
   const int rank = H5Sget_simple_extent_dims(space.id, dims, nullptr);
@@ -197,24 +201,27 @@ bool Hdf5File::has_attribute(const std::string& name) const {
 }
 
 double Hdf5File::read_double_attribute(const std::string& name) const {
-  Handle attr{check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
-              H5Aclose};
+  Handle attr{
+      check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
+      H5Aclose};
   double v = 0;
   check_status(H5Aread(attr.id, H5T_NATIVE_DOUBLE, &v), "read attribute '" + name + "'", path_);
   return v;
 }
 
 std::int64_t Hdf5File::read_integer_attribute(const std::string& name) const {
-  Handle attr{check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
-              H5Aclose};
+  Handle attr{
+      check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
+      H5Aclose};
   std::int64_t v = 0;
   check_status(H5Aread(attr.id, H5T_NATIVE_INT64, &v), "read attribute '" + name + "'", path_);
   return v;
 }
 
 std::string Hdf5File::read_string_attribute(const std::string& name) const {
-  Handle attr{check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
-              H5Aclose};
+  Handle attr{
+      check(H5Aopen(file_, name.c_str(), H5P_DEFAULT), "open attribute '" + name + "'", path_),
+      H5Aclose};
   Handle type{H5Aget_type(attr.id), H5Tclose};
   std::string v(H5Tget_size(type.id), '\0');
   Handle mem{H5Tcopy(H5T_C_S1), H5Tclose};

@@ -29,7 +29,8 @@ class Hdf5File {
 
   // Dataset of rows x columns values (columns = 1 writes a 1-D dataset).
   void write(const std::string& name, const double* data, std::size_t rows, std::size_t columns);
-  void write(const std::string& name, const std::int64_t* data, std::size_t rows, std::size_t columns);
+  void write(const std::string& name, const std::int64_t* data, std::size_t rows,
+             std::size_t columns);
   void write_attribute(const std::string& name, double value);
   void write_attribute(const std::string& name, std::int64_t value);
   void write_attribute(const std::string& name, const std::string& value);
@@ -50,8 +51,8 @@ class Hdf5File {
 
  private:
   std::string path_;
-  std::int64_t file_ = -1;  // hid_t
-  bool created_ = false;       // opened to write: removed if an exception unwinds it
+  std::int64_t file_ = -1;      // hid_t
+  bool created_ = false;        // opened to write: removed if an exception unwinds it
   int exceptions_at_open_ = 0;  // std::uncaught_exceptions() when opened
 };
 

@@ -27,7 +27,8 @@ std::map<std::size_t, fs::path> SnapshotWriter::files(const fs::path& run_direct
     const std::string name = f.path().filename().string();  // particles_NNNNNN.h5
     if (name.size() != 19 || !name.starts_with("particles_") || !name.ends_with(".h5")) continue;
     const std::string digits = name.substr(10, 6);
-    if (digits.find_first_not_of("0123456789") == std::string::npos) out.emplace(std::stoul(digits), f.path());
+    if (digits.find_first_not_of("0123456789") == std::string::npos)
+      out.emplace(std::stoul(digits), f.path());
   }
   return out;
 }
@@ -36,25 +37,28 @@ namespace {
 
 // Gathers a field in id order.
 template <class T>
-std::vector<T> in_order(const std::vector<T>& field, int nc, const std::vector<std::uint32_t>& order) {
+std::vector<T> in_order(const std::vector<T>& field, int nc,
+                        const std::vector<std::uint32_t>& order) {
   std::vector<T> out(order.size() * nc);
   for (std::size_t k = 0; k < order.size(); ++k)
-    for (int c = 0; c < nc; ++c) out[k * nc + c] = field[order[k] * static_cast<std::size_t>(nc) + c];
+    for (int c = 0; c < nc; ++c)
+      out[k * nc + c] = field[order[k] * static_cast<std::size_t>(nc) + c];
   return out;
 }
 
 constexpr int derived_fields = 4;  // density, pressure, von Mises stress, volume ratio
 
 // Writes the snapshot datasets of `solver` to `path`; returns the attributes in order.
-std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const std::filesystem::path& path,
-                                                                         const Solver& solver) {
+std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(
+    const std::filesystem::path& path, const Solver& solver) {
   const Particles& P = solver.particles();
   const std::size_t n = P.size();
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return P.id[a] < P.id[b]; });
 
-  std::vector<std::pair<std::string, std::pair<int, bool>>> attributes;  // name, (components, integer)
+  std::vector<std::pair<std::string, std::pair<int, bool>>>
+      attributes;  // name, (components, integer)
   Hdf5File file(path.string(), Hdf5File::Mode::create);
   file.write_attribute("time", solver.time());
   file.write_attribute("step", static_cast<std::int64_t>(solver.step_count()));
@@ -75,9 +79,9 @@ std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const s
     mises[k] = von_mises(&P.stress[6 * p]);
     ratio[k] = P.volume[p] / P.volume0[p];
   }
-  for (const auto& [name, data] : {std::pair{"density", &density}, std::pair{"pressure", &pressure},
-                                   std::pair{"von_mises_stress", &mises},
-                                   std::pair{"volume_ratio", &ratio}}) {
+  for (const auto& [name, data] :
+       {std::pair{"density", &density}, std::pair{"pressure", &pressure},
+        std::pair{"von_mises_stress", &mises}, std::pair{"volume_ratio", &ratio}}) {
     file.write(name, data->data(), n, 1);
     attributes.push_back({name, {1, false}});
   }
@@ -95,7 +99,9 @@ std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(const s
 
 }  // namespace
 
-void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) { write_datasets(path, solver); }
+void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) {
+  write_datasets(path, solver);
+}
 
 std::size_t snapshot_bytes_per_particle(const Particles& P) {
   std::size_t values = 3 + derived_fields + P.int_fields().size();  // position, derived, integers
@@ -105,7 +111,8 @@ std::size_t snapshot_bytes_per_particle(const Particles& P) {
 }
 
 void SnapshotWriter::write(const Solver& solver) {
-  Entry entry{file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};
+  Entry entry{
+      file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};
   fs::create_directories(directory_ / "snapshots");
   // Written aside and renamed once complete, as the checkpoint is: a snapshot listed by files()
   // is whole, so `hvi measure` may read a run that is still writing them.
@@ -137,8 +144,11 @@ void SnapshotWriter::resume(std::int64_t last_step) {
       Hdf5File file(path.string(), Hdf5File::Mode::read);
       const std::int64_t step = file.read_integer_attribute("step");
       if (step <= last_step && (entries_.empty() || step >= entries_.back().step)) {
-        Entry e{file_name(index), file.read_double_attribute("time"), step,
-                file.shape("position").first, {}};
+        Entry e{file_name(index),
+                file.read_double_attribute("time"),
+                step,
+                file.shape("position").first,
+                {}};
         std::stringstream names(file.read_string_attribute("fields"));
         for (std::string name; std::getline(names, name, ',');) {
           const bool integer = name == "id" || name == "body" || name == "material";
@@ -161,10 +171,14 @@ void SnapshotWriter::resume(std::int64_t last_step) {
 namespace {
 const char* attribute_type(int components) {
   switch (components) {
-    case 3: return "Vector";
-    case 6: return "Tensor6";
-    case 9: return "Tensor";
-    default: return "Scalar";
+    case 3:
+      return "Vector";
+    case 6:
+      return "Tensor6";
+    case 9:
+      return "Tensor";
+    default:
+      return "Scalar";
   }
 }
 }  // namespace
@@ -178,15 +192,17 @@ void SnapshotWriter::write_index() const {
     xml += fmt::format("   <Grid Name=\"step_{}\" GridType=\"Uniform\">\n", e.step);
     xml += fmt::format("    <Time Value=\"{:.17g}\"/>\n", e.time);
     xml += fmt::format(
-        "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\"/>\n",
+        "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" "
+        "NodesPerElement=\"1\"/>\n",
         e.particles);
     xml += fmt::format(
-        "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"{} 3\" NumberType=\"Float\" "
+        "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"{} 3\" "
+        "NumberType=\"Float\" "
         "Precision=\"8\" Format=\"HDF\">{}:/position</DataItem>\n    </Geometry>\n",
         e.particles, e.file);
     for (const auto& a : e.attributes) {
-      const std::string dims =
-          a.components == 1 ? fmt::format("{}", e.particles) : fmt::format("{} {}", e.particles, a.components);
+      const std::string dims = a.components == 1 ? fmt::format("{}", e.particles)
+                                                 : fmt::format("{} {}", e.particles, a.components);
       xml += fmt::format(
           "    <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">\n     <DataItem "
           "Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" Format=\"HDF\">{}:/{}</DataItem>\n"

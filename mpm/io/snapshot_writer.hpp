@@ -38,16 +38,17 @@ class SnapshotWriter {
   static std::string file_name(std::size_t index);
   // The snapshot files of a run directory by their index NNNNNN (a directory pruned by hand has
   // gaps); other files are left out.
-  static std::map<std::size_t, std::filesystem::path> files(const std::filesystem::path& run_directory);
+  static std::map<std::size_t, std::filesystem::path> files(
+      const std::filesystem::path& run_directory);
 
  private:
   struct Attribute {
     std::string name;
-    int components;       // 1, 3, 6 or 9
+    int components;  // 1, 3, 6 or 9
     bool integer;
   };
   struct Entry {
-    std::string file;     // relative to the run directory
+    std::string file;  // relative to the run directory
     double time;
     std::int64_t step;
     std::size_t particles;

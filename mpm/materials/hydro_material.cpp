@@ -13,15 +13,15 @@ namespace hvi::mpm {
 namespace {
 
 // Field names shared by every hydro material of a scene.
-constexpr const char* eos_pressure = "eos_pressure";    // pressure without viscosity, Pa
+constexpr const char* eos_pressure = "eos_pressure";  // pressure without viscosity, Pa
 constexpr const char* plastic_strain = "plastic_strain";
 constexpr const char* plastic_strain_rate = "plastic_strain_rate";
-constexpr const char* plastic_work = "plastic_work";    // J/kg
-constexpr const char* viscous_work = "viscous_work";    // J/kg
-constexpr const char* temperature = "temperature";      // K
+constexpr const char* plastic_work = "plastic_work";  // J/kg
+constexpr const char* viscous_work = "viscous_work";  // J/kg
+constexpr const char* temperature = "temperature";    // K
 constexpr const char* damage = "damage";
-constexpr const char* spall_damage = "spall_damage";    // Tuler-Butcher D_s
-constexpr const char* failed = "failed";                // failure_state: 0 intact, 1 failed, 2 eroded
+constexpr const char* spall_damage = "spall_damage";  // Tuler-Butcher D_s
+constexpr const char* failed = "failed";              // failure_state: 0 intact, 1 failed, 2 eroded
 
 // Leaves a failed particle with its compressive mean stress only.
 void strip_to_compression(double* s, double& pressure) {
@@ -33,7 +33,8 @@ void strip_to_compression(double* s, double& pressure) {
 
 struct Span {
   std::int64_t begin, end;
-  explicit Span(ParticleRange r) : begin(static_cast<std::int64_t>(r.begin)), end(static_cast<std::int64_t>(r.end)) {}
+  explicit Span(ParticleRange r)
+      : begin(static_cast<std::int64_t>(r.begin)), end(static_cast<std::int64_t>(r.end)) {}
 };
 
 // Points per chunk of the stress update's parallel loop: a yielding point costs several times an
@@ -83,7 +84,8 @@ double HydroMaterial::sound_speed(double rho_current, double p, bool is_failed) 
   // without bound as it sprays apart, and K / rho at the current density would shrink the time
   // step for nothing (a particle expanded 3,800-fold alone cut it 30-fold in the demo at 0.2 mm).
   const double rho = is_failed ? std::max(rho_current, models_.density) : rho_current;
-  const double bulk2 = models_.mie_gruneisen ? models_.mie_gruneisen->bulk_sound_speed_squared(rho, p) : K_ / rho;
+  const double bulk2 =
+      models_.mie_gruneisen ? models_.mie_gruneisen->bulk_sound_speed_squared(rho, p) : K_ / rho;
   return wave_speed(bulk2, rho, is_failed);
 }
 
@@ -92,7 +94,8 @@ double HydroMaterial::wave_speed(double bulk2, double rho, bool is_failed) const
   return std::sqrt(bulk2 + (shear ? 4.0 * G_ / (3.0 * rho) : 0.0));
 }
 
-double HydroMaterial::signal_speed(const Particles& P, std::size_t p, const double* pe, const double* fl) const {
+double HydroMaterial::signal_speed(const Particles& P, std::size_t p, const double* pe,
+                                   const double* fl) const {
   if (fl && fl[p] == failure_state::eroded) return speed(P, p);
   return sound_speed(P.mass[p] / P.volume[p], pe[p], fl && fl[p] > 0.0) + speed(P, p);
 }
@@ -103,7 +106,8 @@ double HydroMaterial::max_signal_speed(const Particles& P, ParticleRange r) cons
   double result = 0.0;
   const Span s(r);
 #pragma omp parallel for reduction(max : result) schedule(static)
-  for (std::int64_t p = s.begin; p < s.end; ++p) result = std::max(result, signal_speed(P, p, pe, fl));
+  for (std::int64_t p = s.begin; p < s.end; ++p)
+    result = std::max(result, signal_speed(P, p, pe, fl));
   return result;
 }
 
@@ -154,7 +158,8 @@ std::string HydroMaterial::phase_name() const {
 
 // Every model a scene names, point by point in one pass over the group: each model reads only
 // the point's own state, so this is the same, to the bit, as a pass per model.
-StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r, const StressContext& ctx) const {
+StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r,
+                                          const StressContext& ctx) const {
   PhaseTimer dummy;
   auto t = (ctx.timer ? *ctx.timer : dummy).scope(phase_name_);
   const State st = state(P);
@@ -177,18 +182,20 @@ StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r, const S
       if (models_.erosion) erode_crushed(P, p, st, dt, V);
     }
     const double* sigma = &P.stress[6 * p];
-    if (!(P.volume[p] > 0.0) || !std::isfinite(sigma[0] + sigma[1] + sigma[2] + sigma[3] + sigma[4] + sigma[5] +
-                                                P.internal_energy[p])) {
+    if (!(P.volume[p] > 0.0) || !std::isfinite(sigma[0] + sigma[1] + sigma[2] + sigma[3] +
+                                               sigma[4] + sigma[5] + P.internal_energy[p])) {
       first_bad = std::min(first_bad, p);
       continue;
     }
     // The signal speed at the end of the step: an intact point's EOS state is the one the pressure
     // update used (the same density).
     const bool intact = !st.fl || st.fl[p] == failure_state::intact;
-    const double c = !eroded && intact && models_.mie_gruneisen
-                         ? wave_speed(models_.mie_gruneisen->bulk_sound_speed_squared(eos, st.pe[p]), eos.rho, false) +
-                               speed(P, static_cast<std::size_t>(p))
-                         : signal_speed(P, static_cast<std::size_t>(p), st.pe, st.fl);
+    const double c =
+        !eroded && intact && models_.mie_gruneisen
+            ? wave_speed(models_.mie_gruneisen->bulk_sound_speed_squared(eos, st.pe[p]), eos.rho,
+                         false) +
+                  speed(P, static_cast<std::size_t>(p))
+            : signal_speed(P, static_cast<std::size_t>(p), st.pe, st.fl);
     signal = std::max(signal, c);
   }
   StressUpdate result;
@@ -260,7 +267,8 @@ void HydroMaterial::update_deviatoric(Particles& P, std::int64_t p, const State&
 // work in the internal energy: e_n+1 = e_n - ((p_n + p_n+1) / 2 + q) dV / m, solved in closed
 // form for the Mie-Grüneisen pressure, which is linear in e.
 void HydroMaterial::update_pressure(Particles& P, std::int64_t p, const State& st, double dt,
-                                    const VolumeChange& volume, MieGruneisen::AtDensity& eos) const {
+                                    const VolumeChange& volume,
+                                    MieGruneisen::AtDensity& eos) const {
   const MieGruneisen* mg = models_.mie_gruneisen ? &*models_.mie_gruneisen : nullptr;
   const ArtificialViscosity* av = models_.viscosity ? &*models_.viscosity : nullptr;
   const double* L = &P.velocity_gradient[9 * p];
@@ -274,7 +282,9 @@ void HydroMaterial::update_pressure(Particles& P, std::int64_t p, const State& s
 
   double q = 0.0;
   if (av && trD < 0.0) {
-    const double c = is_failed || !mg ? sound_speed(rho, p_old, is_failed) : wave_speed(mg->bulk_sound_speed_squared(eos, p_old), rho, false);
+    const double c = is_failed || !mg
+                         ? sound_speed(rho, p_old, is_failed)
+                         : wave_speed(mg->bulk_sound_speed_squared(eos, p_old), rho, false);
     q = rho * av->length * (av->linear * c * -trD + av->quadratic * av->length * trD * trD);
     st.wq[p] += -q * dV_m;
   }
@@ -374,7 +384,8 @@ double HydroMaterial::dissipated_energy(const Particles& P, ParticleRange r) con
   const double* wq = models_.viscosity ? P.field(viscous_work).data() : nullptr;
   if (!wp && !wq) return 0.0;
   double sum = 0.0;  // serial: the same sum for any thread count
-  for (std::size_t p = r.begin; p < r.end; ++p) sum += P.mass[p] * ((wp ? wp[p] : 0.0) + (wq ? wq[p] : 0.0));
+  for (std::size_t p = r.begin; p < r.end; ++p)
+    sum += P.mass[p] * ((wp ? wp[p] : 0.0) + (wq ? wq[p] : 0.0));
   return sum;
 }
 

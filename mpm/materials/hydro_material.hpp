@@ -33,15 +33,15 @@ using materials::MieGruneisen;
 using materials::TulerButcher;
 
 struct AdiabaticHeating {
-  double specific_heat = 0;      // c_v, J/(kg K)
-  double taylor_quinney = 0.9;   // fraction chi of plastic work turned into heat
+  double specific_heat = 0;     // c_v, J/(kg K)
+  double taylor_quinney = 0.9;  // fraction chi of plastic work turned into heat
 };
 
 // q = rho l (linear c |tr D| + quadratic l (tr D)^2) for tr D < 0, l the grid cell size.
 struct ArtificialViscosity {
   double linear = 0.2, quadratic = 1.0;  // AUTODYN's defaults; they hold the plate-impact
-                                          // shock to 3-5 cells with <20% overshoot
-  double length = 0;                      // m
+                                         // shock to 3-5 cells with <20% overshoot
+  double length = 0;                     // m
 };
 
 // Erosion by compression. A small point caught in a cell with fast, heavy material is squeezed by
@@ -63,7 +63,7 @@ constexpr double intact = 0.0, failed = 1.0, eroded = 2.0;
 struct HydroModels {
   double density = 0, youngs_modulus = 0, poisson_ratio = 0;
   double initial_temperature = 293.0;  // K
-  bool shear_strength = true;  // false: hydrodynamic, the deviatoric stress stays zero
+  bool shear_strength = true;          // false: hydrodynamic, the deviatoric stress stays zero
   std::optional<JohnsonCookStrength> johnson_cook;
   std::optional<MieGruneisen> mie_gruneisen;
   std::optional<ArtificialViscosity> viscosity;
@@ -92,7 +92,8 @@ class HydroMaterial : public Material {
   // Sound speed (bulk and, for intact material, shear) at density rho and pressure p.
   double sound_speed(double rho, double p, bool failed) const;
   // Fastest signal of particle p: |v| plus its sound speed (an eroded point carries no wave).
-  double signal_speed(const Particles& P, std::size_t p, const double* pressure, const double* failed_state) const;
+  double signal_speed(const Particles& P, std::size_t p, const double* pressure,
+                      const double* failed_state) const;
 
  private:
   struct State;
@@ -101,8 +102,8 @@ class HydroMaterial : public Material {
   // The models' work on point p over one step, in this order.
   void update_deviatoric(Particles& P, std::int64_t p, const State& st, double dt,
                          const VolumeChange& V) const;
-  void update_pressure(Particles& P, std::int64_t p, const State& st, double dt, const VolumeChange& V,
-                       MieGruneisen::AtDensity& eos) const;
+  void update_pressure(Particles& P, std::int64_t p, const State& st, double dt,
+                       const VolumeChange& V, MieGruneisen::AtDensity& eos) const;
   // sqrt(c_bulk^2 + 4 G / (3 rho)), without the shear wave where there is no strength.
   double wave_speed(double bulk2, double rho, bool failed) const;
   void update_temperature(Particles& P, std::int64_t p, const State& st) const;
@@ -113,7 +114,8 @@ class HydroMaterial : public Material {
                      const VolumeChange& V) const;
   // The "failed" field exists when a model can fail or erode a particle.
   bool can_fail() const {
-    return models_.damage || models_.max_principal_stress || models_.tuler_butcher || models_.erosion;
+    return models_.damage || models_.max_principal_stress || models_.tuler_butcher ||
+           models_.erosion;
   }
 
   HydroModels models_;

@@ -18,8 +18,9 @@ JohnsonCookStrength paper_aluminium_strength() {
   return jc;
 }
 
-LibraryMaterial paper_aluminium(const char* name, const char* source, double rho, double E, double c0,
-                                std::optional<JohnsonCookDamage> damage, std::optional<double> sigma_max) {
+LibraryMaterial paper_aluminium(const char* name, const char* source, double rho, double E,
+                                double c0, std::optional<JohnsonCookDamage> damage,
+                                std::optional<double> sigma_max) {
   LibraryMaterial m;
   m.name = name;
   m.source = source;
@@ -49,13 +50,15 @@ JohnsonCookDamage jc_damage(double D1, double D2, double D3, double D4, double D
 std::vector<LibraryMaterial> make_library() {
   std::vector<LibraryMaterial> lib;
   // Table 1 (validation models).
-  lib.push_back(paper_aluminium("Al2017", "paper Table 1 (projectile, validation)", 2.79, 73, 5328, std::nullopt, 1580));
-  lib.push_back(paper_aluminium("Al2024-T81", "paper Table 1 (facesheets, validation)", 2.77, 75, 5330, std::nullopt, 1500));
-  lib.push_back(paper_aluminium("Al5052-H19", "paper Table 1 (honeycomb core, validation)", 2.68, 73, 5240,
-                                jc_damage(0.13, 0.13, -1.50, 0.011, 0.0), std::nullopt));
+  lib.push_back(paper_aluminium("Al2017", "paper Table 1 (projectile, validation)", 2.79, 73, 5328,
+                                std::nullopt, 1580));
+  lib.push_back(paper_aluminium("Al2024-T81", "paper Table 1 (facesheets, validation)", 2.77, 75,
+                                5330, std::nullopt, 1500));
+  lib.push_back(paper_aluminium("Al5052-H19", "paper Table 1 (honeycomb core, validation)", 2.68,
+                                73, 5240, jc_damage(0.13, 0.13, -1.50, 0.011, 0.0), std::nullopt));
   // Table 4 (parameter-study models).
-  lib.push_back(paper_aluminium("Al6061", "paper Table 4 (projectile and facesheets, study)", 2.77, 75, 5350,
-                                jc_damage(-0.77, 1.45, -0.47, 0.0, 1.6), std::nullopt));
+  lib.push_back(paper_aluminium("Al6061", "paper Table 4 (projectile and facesheets, study)", 2.77,
+                                75, 5350, jc_damage(-0.77, 1.45, -0.47, 0.0, 1.6), std::nullopt));
   lib.push_back(paper_aluminium("Al5052", "paper Table 4 (honeycomb core, study)", 2.68, 73, 5350,
                                 jc_damage(0.13, 0.13, -1.50, 0.011, 0.0), std::nullopt));
   {
@@ -99,7 +102,8 @@ std::vector<LibraryMaterial> make_library() {
     p.youngs_modulus = 206.9 * GPa;
     p.poisson_ratio = 0.3;
     p.initial_temperature = 293.15;
-    p.johnson_cook = JohnsonCookStrength{806 * MPa, 614 * MPa, 0.168, 0.0089, 1.1, 1813.15, 293.15, 1.0};
+    p.johnson_cook =
+        JohnsonCookStrength{806 * MPa, 614 * MPa, 0.168, 0.0089, 1.1, 1813.15, 293.15, 1.0};
     m.specific_heat = 460;
     lib.push_back(m);
   }

@@ -11,8 +11,8 @@ namespace hvi::mpm {
 
 struct LibraryMaterial {
   std::string name;
-  std::string source;   // where the numbers come from
-  HydroModels parameters;  // optional models filled where the source gives them
+  std::string source;                   // where the numbers come from
+  HydroModels parameters;               // optional models filled where the source gives them
   std::optional<double> specific_heat;  // J/(kg K), for adiabatic heating
 };
 

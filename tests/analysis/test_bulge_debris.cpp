@@ -104,7 +104,7 @@ TEST(Debris, MassAndExtents) {
   EXPECT_NEAR(dw.mass, 12e-6, 1e-18);
   EXPECT_NEAR(dw.axial_extent, 4 * mm, 1e-12);
   EXPECT_NEAR(dw.radial_extent, 3 * mm, 1e-12);
-  EXPECT_NEAR(dw.kinetic_energy, 2 * ke, 1e-15);  // the images move mirrored, as fast
+  EXPECT_NEAR(dw.kinetic_energy, 2 * ke, 1e-15);       // the images move mirrored, as fast
   EXPECT_EQ(whole.velocity[3 * p.size() + 1], -20.0);  // v_y of the first image, across y = 0
 }
 

@@ -84,8 +84,7 @@ TEST(Hole, RasterMatchesTheFootprintUnionToOneCell) {
     double worst = 0;
     std::array<double, 12> exact{};
     for (int k = 0; k < 12; ++k) {
-      exact[k] =
-          test::footprint_union_distance(p.view(), 0, 0, HoleGeometry::angle(k, o.rotation));
+      exact[k] = test::footprint_union_distance(p.view(), 0, 0, HoleGeometry::angle(k, o.rotation));
       worst = std::max(worst, std::abs(f.hole.r[k] - exact[k]) / pixel);
     }
     EXPECT_LE(worst, 1.0) << "pixel " << pixel;
@@ -98,9 +97,10 @@ TEST(Hole, RasterMatchesTheFootprintUnionToOneCell) {
     }
     EXPECT_NEAR(f.hole.D_h, h_exact, 2 * pixel);
     EXPECT_NEAR(f.hole.D_v, v_exact, 2 * pixel);
-    std::printf("raster vs footprint union, pixel h/%.2g: worst r_theta error %.3f cells; D_h %.3f, "
-                "D_v %.3f cells\n",
-                h / pixel, worst, (f.hole.D_h - h_exact) / pixel, (f.hole.D_v - v_exact) / pixel);
+    std::printf(
+        "raster vs footprint union, pixel h/%.2g: worst r_theta error %.3f cells; D_h %.3f, "
+        "D_v %.3f cells\n",
+        h / pixel, worst, (f.hole.D_h - h_exact) / pixel, (f.hole.D_v - v_exact) / pixel);
   }
 }
 

@@ -3,18 +3,18 @@
 // hole, a rear bulge or hole, and debris of known size. Checks the reading of the scene (bodies,
 // spacings, panel, sound speeds, mirror plane), the projectile axis, the mirroring and the files.
 #include <cmath>
-#include <map>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <numbers>
 
 #include <gtest/gtest.h>
 
 #include "analysis/table.hpp"
-#include "run/measure_command.hpp"
 #include "mpm/io/hdf5_file.hpp"
+#include "run/measure_command.hpp"
 #include "synthetic.hpp"
 
 namespace hvi::driver {
@@ -121,7 +121,8 @@ void write(const fs::path& file, const Frame& f, double time, std::int64_t step)
 // 0.25 mm (width 1 mm) or, with `rear_hole`, has an elliptic hole 1.6 x 1.2 mm; the projectile sits
 // 2 mm behind the rear face as debris, spread 0.5 mm off the axis.
 // `last` may change the last frame before it is written.
-fs::path make_run(const std::string& name, bool rear_hole, const std::function<void(Frame&)>& last = {}) {
+fs::path make_run(const std::string& name, bool rear_hole,
+                  const std::function<void(Frame&)>& last = {}) {
   const fs::path dir = fs::path(testing::TempDir()) / ("hvi_measure_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -247,7 +248,7 @@ TEST(MeasureCommand, PanelPerforatedRearAndTaper) {
   EXPECT_EQ(q.at("e_r"), m.rear->hole.eccentricity);
   EXPECT_EQ(q.at("taper"), *m.taper);
   EXPECT_EQ(q.at("debris_mass"), m.debris.mass);
-  EXPECT_EQ(q.count("bulge"), 0u);  // perforated: no bulge
+  EXPECT_EQ(q.count("bulge"), 0u);         // perforated: no bulge
   EXPECT_EQ(q.at("rear_hole_open"), 0.0);  // closed inside the sheet: D_r is the hole's size
 
   // Without mirroring the half sheet's hole reaches the cut at y = 0: open, and the axis is the
@@ -384,7 +385,8 @@ TEST(MeasureCommand, APointAGrowingZoneAddsIsMirroredAndCountedByItsLayer) {
   EXPECT_NEAR(after.debris.mass, before.debris.mass + 2 * m, 1e-12 * before.debris.mass);
   EXPECT_NEAR(after.debris.kinetic_energy, before.debris.kinetic_energy + m * 500.0 * 500.0,
               1e-12 * before.debris.kinetic_energy);
-  EXPECT_EQ(after.debris.axial_extent, before.debris.axial_extent);  // 1.4 mm behind, the block 2.35
+  EXPECT_EQ(after.debris.axial_extent,
+            before.debris.axial_extent);  // 1.4 mm behind, the block 2.35
   EXPECT_EQ(after.axis, before.axis);
   EXPECT_EQ(after.front->hole.D, before.front->hole.D);
   EXPECT_EQ(after.rear->hole.D, before.rear->hole.D);

@@ -239,7 +239,8 @@ TEST(PowerLawFit, TableFromRunDirectories) {
 // The fine-cell front law docs/verification/paper_cases.md and docs/log/paper_results.md quote,
 // from the CSV they name: the figures there are this fit's, to the digits printed.
 TEST(PowerLawFit, FineCellFrontHolesGiveTheDocumentedLaw) {
-  const Table t = read_csv(fs::path(HVI_SOURCE_DIR) / "docs" / "verification" / "front_holes_0141.csv");
+  const Table t =
+      read_csv(fs::path(HVI_SOURCE_DIR) / "docs" / "verification" / "front_holes_0141.csv");
   ASSERT_EQ(t.rows.size(), 25u);
   const PowerLawFit f = fit(PowerLawForm::front, t);
   EXPECT_NEAR(f.constant, 5.689, 0.005);

@@ -17,15 +17,20 @@ constexpr double h = 1e-3;                    // grid cell and far-field element
 constexpr int mpm_cells = 60, fe_cells = 60;  // bar x in [0, 120 h]: MPM left, FE right
 constexpr double rho = 2700, E = 70e9, nu = 0.33;
 inline const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-inline const double M = lambda + 2 * mu, c = std::sqrt(M / rho);  // constrained modulus, bar wave speed
+inline const double M = lambda + 2 * mu,
+                    c = std::sqrt(M / rho);  // constrained modulus, bar wave speed
 
-inline mpm::GridGeometry bar_grid() { return mpm::test::grid({-4 * h, 0, 0}, h, {130, 2, 2}); }
+inline mpm::GridGeometry bar_grid() {
+  return mpm::test::grid({-4 * h, 0, 0}, h, {130, 2, 2});
+}
 
 // Rollers on y = 0, 2h and z = 0, 2h.
 inline std::vector<mpm::GridBoundary> rollers() {
   using mpm::BoundaryType;
-  return {{1, 0, true, BoundaryType::symmetry}, {1, 2, false, BoundaryType::symmetry},
-          {2, 0, true, BoundaryType::symmetry}, {2, 2, false, BoundaryType::symmetry}};
+  return {{1, 0, true, BoundaryType::symmetry},
+          {1, 2, false, BoundaryType::symmetry},
+          {2, 0, true, BoundaryType::symmetry},
+          {2, 2, false, BoundaryType::symmetry}};
 }
 
 // Material points over [0, length_cells h].
@@ -34,7 +39,8 @@ inline std::unique_ptr<mpm::Solver> bar_solver(double length_cells) {
   s.shape = mpm::ShapeFunction::cpgimp;
   s.scheme = mpm::UpdateScheme::musl;
   auto solver = std::make_unique<mpm::Solver>(
-      bar_grid(), s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
+      bar_grid(), s,
+      mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
       std::vector<std::string>{"bar"}, rollers());
   mpm::test::add_body(*solver, geometry::Box({0, 0, 0}, {length_cells * h, 2 * h, 2 * h}), 2, 0, 0,
                       mpm::test::uniform({0, 0, 0}));
@@ -76,16 +82,19 @@ inline void strain_uniformly(mpm::Particles& P, fem::FarField& far, double eps) 
 struct PatchSpeeds {
   double far_end = 0, interface = 0;
 };
-inline PatchSpeeds patch_speeds(const mpm::Particles& P, const fem::FarField& far, double interface_x) {
+inline PatchSpeeds patch_speeds(const mpm::Particles& P, const fem::FarField& far,
+                                double interface_x) {
   PatchSpeeds s;
   const auto x = far.reference_positions();
   const auto v = far.velocity();
   for (std::size_t a = 0; a < far.node_count(); ++a) {
-    if (x[3 * a] > (mpm_cells + fe_cells) * h - 1e-9) s.far_end = std::max(s.far_end, std::abs(v[3 * a]));
+    if (x[3 * a] > (mpm_cells + fe_cells) * h - 1e-9)
+      s.far_end = std::max(s.far_end, std::abs(v[3 * a]));
     if (x[3 * a] < interface_x + 4 * h) s.interface = std::max(s.interface, std::abs(v[3 * a]));
   }
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.position[3 * p] > (mpm_cells - 4) * h) s.interface = std::max(s.interface, std::abs(P.velocity[3 * p]));
+    if (P.position[3 * p] > (mpm_cells - 4) * h)
+      s.interface = std::max(s.interface, std::abs(P.velocity[3 * p]));
   return s;
 }
 

@@ -17,7 +17,9 @@ namespace {
 using namespace test;
 
 // The MPM zone is the bar left of x = 60 h; far-field nodes up to one cell beyond are tied.
-InterfaceBand bar_band() { return {{-4 * h, 0, mpm_cells * h, 2 * h}, h}; }
+InterfaceBand bar_band() {
+  return {{-4 * h, 0, mpm_cells * h, 2 * h}, h};
+}
 
 struct Hybrid {
   std::unique_ptr<mpm::Solver> solver = bar_solver(mpm_cells);
@@ -51,8 +53,10 @@ TEST(FarFieldCoupling, RigidTranslationGivesNoInterfaceForce) {
   H.solver->initialise();
   for (int s = 0; s < 20; ++s) H.solver->step();
   double worst = 0;
-  for (std::size_t p = 0; p < P.size(); ++p) worst = std::max(worst, std::abs(P.velocity[3 * p] - V));
-  for (std::size_t a = 0; a < H.far->node_count(); ++a) worst = std::max(worst, std::abs(v[3 * a] - V));
+  for (std::size_t p = 0; p < P.size(); ++p)
+    worst = std::max(worst, std::abs(P.velocity[3 * p] - V));
+  for (std::size_t a = 0; a < H.far->node_count(); ++a)
+    worst = std::max(worst, std::abs(v[3 * a] - V));
   EXPECT_LT(worst, 1e-12 * V);
   double stress = 0;
   for (const double s : P.stress) stress = std::max(stress, std::abs(s));
@@ -82,7 +86,8 @@ TEST(FarFieldCoupling, UniformStrainGivesNoInterfaceForce) {
 // field. After its tail has passed the interface by 16 h:
 //  - the energy left in the MPM zone (what the interface reflected, plus the MPM's own wake) is
 //    below 1% of the pulse's;
-//  - the far field holds the energy and peak velocity an all-MPM bar has beyond x = 60 h, within 2%;
+//  - the far field holds the energy and peak velocity an all-MPM bar has beyond x = 60 h, within
+//  2%;
 //  - the momentum of particles plus far field is conserved to round-off.
 TEST(FarFieldCoupling, PulseCrossesTheInterface) {
   mpm::test::Threads one(1);
@@ -134,12 +139,14 @@ TEST(FarFieldCoupling, PulseCrossesTheInterface) {
   const double mpm_right = particle_energy(*all, mpm_cells * h, 1) / E_pulse;
   double peak_mpm = 0;
   for (std::size_t p = 0; p < all->particles().size(); ++p)
-    if (all->particles().position[3 * p] > mpm_cells * h) peak_mpm = std::max(peak_mpm, all->particles().velocity[3 * p]);
+    if (all->particles().position[3 * p] > mpm_cells * h)
+      peak_mpm = std::max(peak_mpm, all->particles().velocity[3 * p]);
 
-  std::printf("pulse: left in the MPM zone %.3e of its energy (all-MPM bar: %.3e); transmitted "
-              "%.4f (all-MPM %.4f); peak %.4f m/s (all-MPM %.4f); momentum error %.2e of %.3e\n",
-              left_behind, mpm_left, (far.kinetic + far.strain) / E_pulse, mpm_right, peak_far, peak_mpm,
-              momentum_error, P0);
+  std::printf(
+      "pulse: left in the MPM zone %.3e of its energy (all-MPM bar: %.3e); transmitted "
+      "%.4f (all-MPM %.4f); peak %.4f m/s (all-MPM %.4f); momentum error %.2e of %.3e\n",
+      left_behind, mpm_left, (far.kinetic + far.strain) / E_pulse, mpm_right, peak_far, peak_mpm,
+      momentum_error, P0);
   EXPECT_LT(left_behind, 0.01);
   EXPECT_NEAR((far.kinetic + far.strain) / E_pulse / mpm_right, 1.0, 0.02);
   EXPECT_NEAR(peak_far / peak_mpm, 1.0, 0.02);

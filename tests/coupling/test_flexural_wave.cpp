@@ -23,15 +23,19 @@ using mpm::BoundaryType;
 using mpm::GridBoundary;
 
 constexpr double h = 1e-3;
-constexpr int mpm_cells = 120, total_cells = 300, thick = 4;  // plate x in [0, 300 h], z in [0, 4 h]
+constexpr int mpm_cells = 120, total_cells = 300,
+              thick = 4;  // plate x in [0, 300 h], z in [0, 4 h]
 constexpr double rho = 2700, E = 70e9, nu = 0.33;
-constexpr double x0 = 60 * h, width = 8 * h, V = 1.0;  // the bump v_z = V exp(-((x - x0) / width)^2)
+constexpr double x0 = 60 * h, width = 8 * h,
+                 V = 1.0;  // the bump v_z = V exp(-((x - x0) / width)^2)
 constexpr double probe_x = 160 * h, probe_z = 2 * h;
 // Until the bump's left half, reflected at x = 0, could reach the probe (220 h at the Rayleigh
 // speed, the fastest an A0 wave's energy travels, ~2900 m/s here).
 constexpr double end_time = 220 * h / 2900.0;
 
-double bump(double x) { return V * std::exp(-((x - x0) / width) * ((x - x0) / width)); }
+double bump(double x) {
+  return V * std::exp(-((x - x0) / width) * ((x - x0) / width));
+}
 
 // Nodes on y = 0 and y = h take the rollers.
 std::unique_ptr<fem::FarField> strip(double x_lower, int cells) {
@@ -51,7 +55,8 @@ std::unique_ptr<fem::FarField> strip(double x_lower, int cells) {
 std::size_t node_at(const fem::FarField& f, double x, double z) {
   const auto X = f.reference_positions();
   for (std::size_t a = 0; a < f.node_count(); ++a)
-    if (std::abs(X[3 * a] - x) < 1e-9 && X[3 * a + 1] < 1e-9 && std::abs(X[3 * a + 2] - z) < 1e-9) return a;
+    if (std::abs(X[3 * a] - x) < 1e-9 && X[3 * a + 1] < 1e-9 && std::abs(X[3 * a + 2] - z) < 1e-9)
+      return a;
   throw std::logic_error("no node there");
 }
 
@@ -75,14 +80,20 @@ struct History {
 TEST(FlexuralWave, CrossesTheInterfaceAsAnAllFiniteElementPlateCarriesIt) {
   mpm::test::Threads one(1);
   // The hybrid: grid around the MPM part and the band, z with room to bend.
-  const mpm::GridGeometry grid = mpm::test::grid({-2 * h, 0, -4 * h}, h, {mpm_cells + 6, 1, thick + 8});
+  const mpm::GridGeometry grid =
+      mpm::test::grid({-2 * h, 0, -4 * h}, h, {mpm_cells + 6, 1, thick + 8});
   mpm::SolverSettings s;
   s.shape = mpm::ShapeFunction::cpgimp;
   s.scheme = mpm::UpdateScheme::musl;
-  mpm::Solver solver(grid, s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
-                     {"plate"}, {GridBoundary{1, 0, true, BoundaryType::symmetry}, GridBoundary{1, 1, false, BoundaryType::symmetry}});
+  mpm::Solver solver(
+      grid, s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
+      {"plate"},
+      {GridBoundary{1, 0, true, BoundaryType::symmetry},
+       GridBoundary{1, 1, false, BoundaryType::symmetry}});
   mpm::test::add_body(solver, geometry::Box({0, 0, 0}, {mpm_cells * h, h, thick * h}), 2, 0, 0,
-                      [](const double* x) { return mpm::Vec3{0, 0, bump(x[0])}; });
+                      [](const double* x) {
+                        return mpm::Vec3{0, 0, bump(x[0])};
+                      });
   auto far = strip(mpm_cells * h, total_cells - mpm_cells);
   FarFieldCoupling coupling(*far, grid, {{-2 * h, 0, mpm_cells * h, h}, 2 * h});
   solver.add_coupling(&coupling);
@@ -108,11 +119,17 @@ TEST(FlexuralWave, CrossesTheInterfaceAsAnAllFiniteElementPlateCarriesIt) {
   }
 
   // The same strip all material points: the probe's particles (within half a cell of it).
-  const mpm::GridGeometry long_grid = mpm::test::grid({-2 * h, 0, -4 * h}, h, {total_cells + 4, 1, thick + 8});
-  mpm::Solver all_mpm(long_grid, s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
-                      {"plate"}, {GridBoundary{1, 0, true, BoundaryType::symmetry}, GridBoundary{1, 1, false, BoundaryType::symmetry}});
+  const mpm::GridGeometry long_grid =
+      mpm::test::grid({-2 * h, 0, -4 * h}, h, {total_cells + 4, 1, thick + 8});
+  mpm::Solver all_mpm(
+      long_grid, s, mpm::test::one_material(std::make_unique<mpm::LinearElastic>("al", rho, E, nu)),
+      {"plate"},
+      {GridBoundary{1, 0, true, BoundaryType::symmetry},
+       GridBoundary{1, 1, false, BoundaryType::symmetry}});
   mpm::test::add_body(all_mpm, geometry::Box({0, 0, 0}, {total_cells * h, h, thick * h}), 2, 0, 0,
-                      [](const double* x) { return mpm::Vec3{0, 0, bump(x[0])}; });
+                      [](const double* x) {
+                        return mpm::Vec3{0, 0, bump(x[0])};
+                      });
   all_mpm.initialise();
   std::vector<std::size_t> near;
   for (std::size_t p = 0; p < all_mpm.particles().size(); ++p)
@@ -140,10 +157,13 @@ TEST(FlexuralWave, CrossesTheInterfaceAsAnAllFiniteElementPlateCarriesIt) {
     }
     return std::sqrt(difference / norm);
   };
-  std::printf("A0 at 40 h past the interface: peak |v_z| hybrid %.5f, all-FE %.5f m/s (%+.2f%%), all-MPM %.5f "
-              "(%+.2f%%); history L2 difference from all-FE: hybrid %.1f%%, all-MPM %.1f%%; %zu steps\n",
-              hybrid.peak(), reference.peak(), 100 * (hybrid.peak() / reference.peak() - 1), particles.peak(),
-              100 * (particles.peak() / reference.peak() - 1), 100 * l2(hybrid), 100 * l2(particles), hybrid.t.size());
+  std::printf(
+      "A0 at 40 h past the interface: peak |v_z| hybrid %.5f, all-FE %.5f m/s (%+.2f%%), all-MPM "
+      "%.5f "
+      "(%+.2f%%); history L2 difference from all-FE: hybrid %.1f%%, all-MPM %.1f%%; %zu steps\n",
+      hybrid.peak(), reference.peak(), 100 * (hybrid.peak() / reference.peak() - 1),
+      particles.peak(), 100 * (particles.peak() / reference.peak() - 1), 100 * l2(hybrid),
+      100 * l2(particles), hybrid.t.size());
   EXPECT_GT(reference.peak(), 0.05 * V);  // the wave did arrive within the window
   EXPECT_NEAR(hybrid.peak() / reference.peak(), 1.0, 0.05);
   // The interface adds no difference of its own: over the history the hybrid is no further from

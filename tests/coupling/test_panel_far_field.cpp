@@ -43,17 +43,20 @@ TEST(PanelFarField, LayersMassAndInterfaceNodesFollowThePanelAndTheGrid) {
   EXPECT_DOUBLE_EQ(mesh.layers[2].z_upper, 0.0);
   for (const double v : mesh.x_steps) EXPECT_LE(v, 6 * 0.5e-3 * (1 + 1e-12));
   fem::FarField f(mesh);
-  // Mass: the panel's per area (faces plus the core at its solidity) times the area outside the zone.
+  // Mass: the panel's per area (faces plus the core at its solidity) times the area outside the
+  // zone.
   double total = 0;
   for (const double m : f.lumped_mass()) total += m;
-  const double per_area = 2 * 2770 * 0.5e-3 + 2680 * fem::honeycomb_core_solidity(3e-3, 0.05e-3) * 14.2e-3;
+  const double per_area =
+      2 * 2770 * 0.5e-3 + 2680 * fem::honeycomb_core_solidity(3e-3, 0.05e-3) * 14.2e-3;
   EXPECT_NEAR(total / (per_area * (30e-3 * 30e-3 - 9.2e-3 * 9.2e-3)), 1.0, 1e-12);
   // Every node of the band (zone + 2 cells) sits on a grid node in plane.
   const auto band = panel_interface_band(s.spec, s.grid);
   const auto x = f.reference_positions();
   std::size_t in_band = 0;
   for (std::size_t a = 0; a < f.node_count(); ++a) {
-    if (x[3 * a] > 9.2e-3 + band.width + 1e-12 || x[3 * a + 1] > 9.2e-3 + band.width + 1e-12) continue;
+    if (x[3 * a] > 9.2e-3 + band.width + 1e-12 || x[3 * a + 1] > 9.2e-3 + band.width + 1e-12)
+      continue;
     ++in_band;
     for (int d = 0; d < 2; ++d) {
       const double cells = x[3 * a + d] / 0.4e-3;
@@ -83,7 +86,8 @@ TEST(PanelFarField, RefusesAZoneOffTheGridPlanesAndTurnedDoubleWalls) {
 
 // A zone that grows up to 20 mm: the elements are one grid cell long out to the limit plus the
 // band (20.8 mm), so every band the zone can grow to ties nodes that sit on grid nodes, and
-// beyond they grow to at most 6 facesheet thicknesses; a limit that does not hold the zone or is off the grid planes is refused.
+// beyond they grow to at most 6 facesheet thicknesses; a limit that does not hold the zone or is
+// off the grid planes is refused.
 TEST(PanelFarField, AGrowingZoneHasGridCellElementsOutToItsLimitAndBand) {
   StudyPanel s;
   s.spec.growth_limit = std::array<double, 4>{0, 0, 20e-3, 20e-3};
@@ -100,8 +104,9 @@ TEST(PanelFarField, AGrowingZoneHasGridCellElementsOutToItsLimitAndBand) {
   }
   EXPECT_EQ(fine, 52);  // 20.8 mm of 0.4 mm cells
   EXPECT_NEAR(x, 30e-3, 1e-15);
-  for (const auto& bad : {std::array<double, 4>{0, 0, 8.8e-3, 20e-3}, std::array<double, 4>{0, 0, 20.1e-3, 20e-3},
-                          std::array<double, 4>{0, 0, 31e-3, 20e-3}}) {
+  for (const auto& bad :
+       {std::array<double, 4>{0, 0, 8.8e-3, 20e-3}, std::array<double, 4>{0, 0, 20.1e-3, 20e-3},
+        std::array<double, 4>{0, 0, 31e-3, 20e-3}}) {
     s.spec.growth_limit = bad;
     EXPECT_THROW(panel_far_field_mesh(s.panel, s.spec, s.grid), std::invalid_argument);
   }
@@ -116,7 +121,8 @@ TEST(PanelFarField, DoubleWallsFollowTheRibbonDirection) {
   const fem::Layer along_y = panel_far_field_mesh(s.panel, s.spec, s.grid).layers[1];
   s.panel.rotation = std::numbers::pi / 2;
   const fem::Layer along_x = panel_far_field_mesh(s.panel, s.spec, s.grid).layers[1];
-  EXPECT_DOUBLE_EQ(along_y.density / single.density, 4.0 / 3.0);  // (8t/3D) / (2t/D), same (1 - t/2D)
+  EXPECT_DOUBLE_EQ(along_y.density / single.density,
+                   4.0 / 3.0);  // (8t/3D) / (2t/D), same (1 - t/2D)
   EXPECT_DOUBLE_EQ(along_y.elasticity.E3 / single.elasticity.E3, 4.0 / 3.0);
   EXPECT_DOUBLE_EQ(along_y.elasticity.G13, single.elasticity.G13);
   EXPECT_DOUBLE_EQ(along_y.elasticity.G23 / single.elasticity.G23, 19.0 / 12.0);

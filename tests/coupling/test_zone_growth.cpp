@@ -37,14 +37,16 @@ struct Bar {
   std::unique_ptr<FarFieldCoupling> coupling;
   explicit Bar(std::unique_ptr<fem::FarField> far_field = bar_far_field())
       : solver(bar_solver(mpm_cells)), far(std::move(far_field)) {
-    coupling = std::make_unique<FarFieldCoupling>(*far, bar_grid(), InterfaceBand{{-4 * h, 0, mpm_cells * h, 2 * h}, h});
+    coupling = std::make_unique<FarFieldCoupling>(
+        *far, bar_grid(), InterfaceBand{{-4 * h, 0, mpm_cells * h, 2 * h}, h});
     solver->add_coupling(coupling.get());
   }
   // The points of [60 h, (60 + cells) h], sampled as the bar's were.
   NewPoints grown_points(int cells = grown_cells) const {
     const auto g = bar_grid();
-    const auto s = geometry::sample_lattice(geometry::Box({mpm_cells * h, 0, 0}, {(mpm_cells + cells) * h, 2 * h, 2 * h}),
-                                            h / 2, {g.origin[0], g.origin[1], g.origin[2]});
+    const auto s = geometry::sample_lattice(
+        geometry::Box({mpm_cells * h, 0, 0}, {(mpm_cells + cells) * h, 2 * h, 2 * h}), h / 2,
+        {g.origin[0], g.origin[1], g.origin[2]});
     NewPoints p;
     p.position = s.position;
     p.volume = s.volume;
@@ -54,8 +56,8 @@ struct Bar {
     return p;
   }
   TakeoverReport grow(const NewPoints& points, int cells, const LayerTakeover& layer) {
-    return take_over(*coupling, *far, *solver, points, InterfaceBand{{-4 * h, 0, (mpm_cells + cells) * h, 2 * h}, h},
-                     {layer});
+    return take_over(*coupling, *far, *solver, points,
+                     InterfaceBand{{-4 * h, 0, (mpm_cells + cells) * h, 2 * h}, h}, {layer});
   }
   TakeoverReport grow() { return grow(grown_points(), grown_cells, LayerTakeover{}); }
   double mass() const {
@@ -75,7 +77,8 @@ TEST(ZoneGrowth, TakeOverKeepsARigidTranslation) {
   for (std::size_t a = 0; a < B.far->node_count(); ++a) B.far->velocity()[3 * a] = V;
   B.solver->initialise();
   for (int s = 0; s < 5; ++s) B.solver->step();
-  const double mass = B.mass(), p0 = B.solver->energy().momentum[0], e0 = B.solver->energy().total();
+  const double mass = B.mass(), p0 = B.solver->energy().momentum[0],
+               e0 = B.solver->energy().total();
   const std::size_t n0 = P.size();
   const TakeoverReport r = B.grow();
   EXPECT_EQ(r.points, 10u * 4u * 4u * 2u);  // 10 cells x 2 x 2, 8 points per cell
@@ -89,9 +92,11 @@ TEST(ZoneGrowth, TakeOverKeepsARigidTranslation) {
   EXPECT_NEAR(B.solver->energy().total(), e0, 1e-12 * e0);
   for (int s = 0; s < 20; ++s) B.solver->step();
   double worst = 0;
-  for (std::size_t p = 0; p < P.size(); ++p) worst = std::max(worst, std::abs(P.velocity[3 * p] - V));
+  for (std::size_t p = 0; p < P.size(); ++p)
+    worst = std::max(worst, std::abs(P.velocity[3 * p] - V));
   for (std::size_t a = 0; a < B.far->node_count(); ++a)
-    if (B.far->lumped_mass()[a] > 0) worst = std::max(worst, std::abs(B.far->velocity()[3 * a] - V));
+    if (B.far->lumped_mass()[a] > 0)
+      worst = std::max(worst, std::abs(B.far->velocity()[3 * a] - V));
   EXPECT_LT(worst, 1e-12 * V);
   EXPECT_NEAR(B.solver->energy().momentum[0], p0, 1e-12 * std::abs(p0));
 }
@@ -112,7 +117,8 @@ TEST(ZoneGrowth, TakeOverKeepsAUniformStrain) {
   // their undeformed positions X kept exactly, and x - X the far field's displacement eps X.
   const auto& X = P.field(reference_position_field);
   for (std::size_t p = n0; p < P.size(); ++p) {
-    const auto k = static_cast<std::size_t>(P.id[p] - r.first_id);  // new point k has id first_id + k
+    const auto k =
+        static_cast<std::size_t>(P.id[p] - r.first_id);  // new point k has id first_id + k
     for (int d = 0; d < 3; ++d) EXPECT_EQ(X[3 * p + d], points.position[3 * k + d]);
     EXPECT_NEAR(P.position[3 * p] - X[3 * p], eps * X[3 * p], 1e-12 * h);
     EXPECT_NEAR(P.stress[6 * p + mpm::sym::xx], M * eps, 1e-9 * M * eps);
@@ -144,7 +150,8 @@ TEST(ZoneGrowth, TakeOverKeepsAUniformStrain) {
 //    Voigt's average of the walls against Kelsey's G13 = G_s t/D (fem/orthotropic.hpp).
 //  - The energy carried over is the walls', V rho*/rho_s 1/2 (E eps^2 + G gamma^2 / 2), against
 //    the cells' V 1/2 (C33 eps^2 + G13 gamma^2), 2.5% more; the points started unstressed
-//    before, carrying none of it. Without the walls' directions the take-over refuses, before it changes anything.
+//    before, carrying none of it. Without the walls' directions the take-over refuses, before it
+//    changes anything.
 TEST(ZoneGrowth, TakeOverGivesTheCoresPointsTheirWallsStress) {
   mpm::test::Threads one(1);
   const double D = 3e-3, t = 0.05e-3;
@@ -208,7 +215,8 @@ TEST(ZoneGrowth, TakeOverGivesTheCoresPointsTheirWallsStress) {
   EXPECT_NEAR(sum_yz / volume, 0.0, 1e-9 * core.G13 * gamma);
   EXPECT_NEAR(r.far_field_energy, cells_volume * 0.5 * (C33 * eps * eps + core.G13 * gamma * gamma),
               1e-9 * r.far_field_energy);
-  const double walls_energy = cells_volume * solidity * 0.5 * (E * eps * eps + G * gamma * gamma / 2);
+  const double walls_energy =
+      cells_volume * solidity * 0.5 * (E * eps * eps + G * gamma * gamma / 2);
   EXPECT_NEAR(r.point_energy, walls_energy, 1e-9 * walls_energy);
   // What is not carried over, booked so that the total stays: the shear's t/(2D) = 0.8% of its
   // energy, and C33's excess over E3 (the core's in-plane Poisson coupling, nu12 = 0.99 with
@@ -236,8 +244,8 @@ TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   P.add_field("damage", mpm::FieldKind::scalar, "1");
   // Reaches x1; too little damage; interior; far outside; debris 2.5 mm below the panel's rear
   // face, within y1's margin; ejecta 1.5 mm above its front face, within y1's margin.
-  const double pts[][3] = {{9.5e-3, 2e-3, -1e-3}, {3e-3, 9.9e-3, -1e-3}, {1e-3, 1e-3, -1e-3},
-                           {30e-3, 3e-3, -1e-3}, {5e-3, 9.5e-3, -4.5e-3}, {6e-3, 9.5e-3, 1.5e-3}};
+  const double pts[][3] = {{9.5e-3, 2e-3, -1e-3}, {3e-3, 9.9e-3, -1e-3},   {1e-3, 1e-3, -1e-3},
+                           {30e-3, 3e-3, -1e-3},  {5e-3, 9.5e-3, -4.5e-3}, {6e-3, 9.5e-3, 1.5e-3}};
   const double D[] = {1.0, 0.5, 1.0, 1.0, 1.0, 1.0};
   for (int k = 0; k < 6; ++k) {
     const std::size_t p = P.append(pts[k], 1e-9, 1e-6, 1, 0);
@@ -257,7 +265,8 @@ TEST(ZoneGrowth, GrowsTheSidesDamageReaches) {
   g.damage = 0.5;  // now the second point reaches y1 too
   EXPECT_EQ(grown_zone(P, panel, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
   // At the limit the side stays; other bodies' damage does not count.
-  EXPECT_EQ(grown_zone(P, panel, {0, 0, 12e-3, 10e-3}, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
+  EXPECT_EQ(grown_zone(P, panel, {0, 0, 12e-3, 10e-3}, g),
+            (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
   EXPECT_EQ(grown_zone(P, std::vector<std::int64_t>{2}, zone, g), zone);
   // The interior point reaches x0 and y0, which lie on symmetry planes and stay.
   EXPECT_EQ(grown_zone(P, panel, zone, g)[0], 0.0);
@@ -298,12 +307,15 @@ TEST(ZoneGrowth, AFragmentFlownOutFromTheAxisMovesNoSide) {
 TEST(ZoneGrowth, TheFarFieldsTornCellsJustBeyondASideReachIt) {
   const ZoneGrowth g = test_growth({0, 0, 20e-3, 20e-3});
   const std::array<double, 4> zone{0, 0, 10e-3, 10e-3};
-  const std::vector<double> beyond_x1{10.25e-3, 4e-3}, too_far{11.25e-3, 4e-3}, inside{9.75e-3, 4e-3},
-      past_corner{10.5e-3, 11.5e-3}, at_corner{10.5e-3, 10.5e-3};
-  EXPECT_EQ(sides_reached_from_outside(beyond_x1, zone, g), (std::array<bool, 4>{false, false, true, false}));
+  const std::vector<double> beyond_x1{10.25e-3, 4e-3}, too_far{11.25e-3, 4e-3},
+      inside{9.75e-3, 4e-3}, past_corner{10.5e-3, 11.5e-3}, at_corner{10.5e-3, 10.5e-3};
+  EXPECT_EQ(sides_reached_from_outside(beyond_x1, zone, g),
+            (std::array<bool, 4>{false, false, true, false}));
   for (const auto* none : {&too_far, &inside, &past_corner})
-    EXPECT_EQ(sides_reached_from_outside(*none, zone, g), (std::array<bool, 4>{})) << (*none)[0] << ", " << (*none)[1];
-  EXPECT_EQ(sides_reached_from_outside(at_corner, zone, g), (std::array<bool, 4>{false, false, true, true}));
+    EXPECT_EQ(sides_reached_from_outside(*none, zone, g), (std::array<bool, 4>{}))
+        << (*none)[0] << ", " << (*none)[1];
+  EXPECT_EQ(sides_reached_from_outside(at_corner, zone, g),
+            (std::array<bool, 4>{false, false, true, true}));
   const std::array<bool, 4> reached = sides_reached_from_outside(beyond_x1, zone, g);
   EXPECT_EQ(grown_zone(reached, zone, g), (std::array<double, 4>{0, 0, 12e-3, 10e-3}));
 }
@@ -321,7 +333,8 @@ TEST(ZoneGrowth, ASideAtItsLimitThatDamageReachesIsHeld) {
   const std::vector<std::int64_t> panel{1};
   const std::array<bool, 4> reached = sides_reached(P, panel, zone, g);
   EXPECT_EQ(reached, (std::array<bool, 4>{true, false, true, true}));
-  EXPECT_EQ(sides_held_at_limit(reached, zone, g), (std::array<bool, 4>{false, false, true, false}));
+  EXPECT_EQ(sides_held_at_limit(reached, zone, g),
+            (std::array<bool, 4>{false, false, true, false}));
   EXPECT_EQ(grown_zone(reached, zone, g), (std::array<double, 4>{0, 0, 12e-3, 12e-3}));
   // Below its limit the same side grows and is not held.
   const std::array<double, 4> smaller{0, 0, 10e-3, 10e-3};

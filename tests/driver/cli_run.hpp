@@ -27,8 +27,10 @@ inline fs::path scratch(const std::string& name) {
 // Runs hvi with `args`; returns its exit code, stderr in `err`.
 inline int run(const std::string& args, std::string* err = nullptr) {
   // One file per test: ctest runs the tests of a file in parallel.
-  const fs::path log = fs::path(testing::TempDir()) /
-                       ("hvi_cli_stderr_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt");
+  const fs::path log =
+      fs::path(testing::TempDir()) /
+      ("hvi_cli_stderr_" +
+       std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt");
   const std::string cmd = std::string(HVI_BINARY) + " " + args + " > /dev/null 2> " + log.string();
   const int status = std::system(cmd.c_str());
   if (err) {

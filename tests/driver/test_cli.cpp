@@ -51,7 +51,9 @@ void expect_same_output(const fs::path& a, const fs::path& b, int snapshots = 5)
   EXPECT_EQ(files, snapshots);
 }
 
-TEST(Cli, CheckAcceptsAValidScene) { EXPECT_EQ(run("check " + scene), 0); }
+TEST(Cli, CheckAcceptsAValidScene) {
+  EXPECT_EQ(run("check " + scene), 0);
+}
 
 TEST(Cli, BadSceneStopsBeforeWritingAnything) {
   const fs::path out = scratch("bad");
@@ -91,17 +93,23 @@ TEST(Cli, OutputIsBitwiseIdenticalForOneAndTwoThreads) {
 
 // grid.stencil_cache keeps each point's GIMP weights between a step's transfers: the output is
 // the same bytes with it and without it (the default), for MUSL with the node average (one
-// evaluation a step instead of five) and for USF, which scatters mass and force in separate passes. On 2 threads:
-// USF with cpGIMP and the node average differed from run to run while it stretched the domains
-// between its transfers (a domain outgrowing its owner block's stencil wrote outside its colour).
+// evaluation a step instead of five) and for USF, which scatters mass and force in separate passes.
+// On 2 threads: USF with cpGIMP and the node average differed from run to run while it stretched
+// the domains between its transfers (a domain outgrowing its owner block's stencil wrote outside
+// its colour).
 TEST(Cli, OutputIsBitwiseIdenticalWithAndWithoutTheStencilCache) {
   for (const std::string scheme : {"musl", "usf"}) {
     SCOPED_TRACE(scheme);
-    const std::string set = " --threads 2 --set grid.shape_function=cpgimp --set grid.dilatation=node-average"
-                            " --set grid.scheme=" + scheme;
+    const std::string set =
+        " --threads 2 --set grid.shape_function=cpgimp --set grid.dilatation=node-average"
+        " --set grid.scheme=" +
+        scheme;
     const fs::path on = scratch("cache_on_" + scheme), off = scratch("cache_off_" + scheme);
-    ASSERT_EQ(run("run " + scene + " --out " + on.string() + set + " --set grid.stencil_cache=true"), 0);
-    ASSERT_EQ(run("run " + scene + " --out " + off.string() + set + " --set grid.stencil_cache=false"), 0);
+    ASSERT_EQ(
+        run("run " + scene + " --out " + on.string() + set + " --set grid.stencil_cache=true"), 0);
+    ASSERT_EQ(
+        run("run " + scene + " --out " + off.string() + set + " --set grid.stencil_cache=false"),
+        0);
     expect_same_output(on, off);
   }
 }
@@ -110,11 +118,14 @@ TEST(Cli, OutputIsBitwiseIdenticalWithAndWithoutTheStencilCache) {
 // once they run; a resumed run declares them from the checkpoint in the same order, so its
 // snapshot files are byte-identical too, not only their datasets.
 TEST(Cli, ResumedHydrocodeRunMatchesUninterruptedRun) {
-  const std::string hydro = " --set material.steel.library=Al6061 --set material.steel.strength=johnson-cook"
-                            " --set material.steel.eos=mie-gruneisen --set material.steel.damage=johnson-cook";
+  const std::string hydro =
+      " --set material.steel.library=Al6061 --set material.steel.strength=johnson-cook"
+      " --set material.steel.eos=mie-gruneisen --set material.steel.damage=johnson-cook";
   const fs::path full = scratch("hydro_full"), parts = scratch("hydro_parts");
   ASSERT_EQ(run("run " + scene + " --out " + full.string() + " --threads 2" + hydro), 0);
-  ASSERT_EQ(run("run " + scene + " --out " + parts.string() + " --threads 2 --set run.max_steps=37" + hydro), 0);
+  ASSERT_EQ(run("run " + scene + " --out " + parts.string() +
+                " --threads 2 --set run.max_steps=37" + hydro),
+            0);
   ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
   expect_same_output(full, parts);
 }
@@ -123,7 +134,8 @@ TEST(Cli, ResumedRunMatchesUninterruptedRun) {
   const fs::path full = scratch("full"), parts = scratch("parts");
   ASSERT_EQ(run("run " + scene + " --out " + full.string() + " --threads 2"), 0);
   // Stop after 37 steps (between snapshots and between energy rows), then resume.
-  ASSERT_EQ(run("run " + scene + " --out " + parts.string() + " --threads 2 --set run.max_steps=37"), 0);
+  ASSERT_EQ(
+      run("run " + scene + " --out " + parts.string() + " --threads 2 --set run.max_steps=37"), 0);
   EXPECT_FALSE(fs::exists(parts / "snapshots" / "particles_000004.h5"));
   const double first_wall = summary_number(parts, "wall_seconds");
   EXPECT_EQ(summary_number(parts, "wall_seconds_total"), first_wall);  // one invocation so far
@@ -152,7 +164,8 @@ TEST(Cli, ResumedRunMatchesUninterruptedRun) {
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_NE(lines[0].find("\"step\" : 37,"), std::string::npos) << lines[0];
   EXPECT_NE(lines[1].find("\"step\" : 50,"), std::string::npos) << lines[1];
-  EXPECT_NE(lines[1].find("\"command\" : \"" + hvi + " run --resume "), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("\"command\" : \"" + hvi + " run --resume "), std::string::npos)
+      << lines[1];
   EXPECT_NE(lines[1].find("\"threads\" : 1"), std::string::npos) << lines[1];
   EXPECT_NE(lines[1].find("\"git_revision\" : \""), std::string::npos) << lines[1];
   EXPECT_FALSE(fs::exists(full / "resumes.jsonl"));
@@ -169,8 +182,8 @@ TEST(Cli, SigtermStopsTheRunWithACheckpointItResumesFrom) {
   ASSERT_GE(child, 0);
   if (child == 0) {
     std::freopen("/dev/null", "w", stdout);
-    execl(hvi.c_str(), hvi.c_str(), "run", scene.c_str(), "--out", stopped.c_str(), "--threads", "1",
-          "--set", end_time.c_str(), static_cast<char*>(nullptr));
+    execl(hvi.c_str(), hvi.c_str(), "run", scene.c_str(), "--out", stopped.c_str(), "--threads",
+          "1", "--set", end_time.c_str(), static_cast<char*>(nullptr));
     std::_Exit(127);
   }
   // Wait until the time loop has written a few energy rows (one every 5 steps), then signal.
@@ -187,14 +200,17 @@ TEST(Cli, SigtermStopsTheRunWithACheckpointItResumesFrom) {
   EXPECT_EQ(WEXITSTATUS(status), 143);
   EXPECT_NE(read(stopped / "summary.toml").find("status = 'interrupted'"), std::string::npos);
   const auto steps = static_cast<std::int64_t>(summary_number(stopped, "steps"));
-  ASSERT_GE(steps, 90);      // the header and rows at steps 0, 5, ..., 90 were there before the signal
-  ASSERT_LT(steps, 10000);   // well before the end
+  ASSERT_GE(steps, 90);  // the header and rows at steps 0, 5, ..., 90 were there before the signal
+  ASSERT_LT(steps, 10000);  // well before the end
   // Resumed to 10 steps past the signal, and the same run without the signal.
   const std::string until = " --set run.max_steps=" + std::to_string(steps + 10);
   ASSERT_EQ(run("run --resume " + stopped.string() + " --threads 2" + until), 0);
-  ASSERT_EQ(run("run " + scene + " --out " + straight.string() + " --threads 2 --set " + end_time + until), 0);
+  ASSERT_EQ(run("run " + scene + " --out " + straight.string() + " --threads 2 --set " + end_time +
+                until),
+            0);
   EXPECT_EQ(summary_number(stopped, "steps"), static_cast<double>(steps + 10));
-  const auto files = std::distance(fs::directory_iterator(stopped / "snapshots"), fs::directory_iterator{});
+  const auto files =
+      std::distance(fs::directory_iterator(stopped / "snapshots"), fs::directory_iterator{});
   EXPECT_GE(files, 1);
   expect_same_output(straight, stopped, static_cast<int>(files));
 }
@@ -205,9 +221,12 @@ TEST(Cli, SigtermStopsTheRunWithACheckpointItResumesFrom) {
 TEST(Cli, FailedRunNamesTheParticleAndLeavesACheckpointFromBefore) {
   const fs::path out = scratch("fail");
   std::string err;
-  EXPECT_EQ(run("run " + scene + " --out " + out.string() + " --set grid.shape_function=linear --set grid.scheme=usl", &err), 3);
-  for (const char* part : {"the run failed: step ", ", t = ", "particle ", "(body 'left', material 'steel') at (",
-                           "non-positive volume"})
+  EXPECT_EQ(run("run " + scene + " --out " + out.string() +
+                    " --set grid.shape_function=linear --set grid.scheme=usl",
+                &err),
+            3);
+  for (const char* part : {"the run failed: step ", ", t = ", "particle ",
+                           "(body 'left', material 'steel') at (", "non-positive volume"})
     EXPECT_NE(err.find(part), std::string::npos) << part << " in: " << err;
   EXPECT_NE(err.find("checkpoint.h5 (step 0)"), std::string::npos) << err;
   EXPECT_TRUE(fs::exists(out / "checkpoint.h5"));
@@ -218,15 +237,18 @@ TEST(Cli, FailedRunNamesTheParticleAndLeavesACheckpointFromBefore) {
 // the fastest particle. (A 0.4-cell projectile gains ~29% at cfl 0.5: see test_stability.)
 TEST(Cli, EnergyRunawayStopsTheRun) {
   const fs::path out = scratch("runaway");
-  const std::string stability = std::string(HVI_SOURCE_DIR) + "/cases/stability/hypervelocity_10kms.toml";
+  const std::string stability =
+      std::string(HVI_SOURCE_DIR) + "/cases/stability/hypervelocity_10kms.toml";
   std::string err;
-  EXPECT_EQ(run("run " + stability + " --out " + out.string() +
-                    " --threads 1 --set grid.cell_size=5e-4 --set body.projectile.velocity=[0,0,-4500]"
-                    " --set body.projectile.sphere.radius=2e-4 --set body.projectile.sphere.center=[0,0,0.5e-3]"
-                    " --set body.projectile.particles_per_cell=4 --set run.end_time=1e-6"
-                    " --set output.energy_every=1 --set run.max_energy_growth=0.1",
-                &err),
-            3);
+  EXPECT_EQ(
+      run("run " + stability + " --out " + out.string() +
+              " --threads 1 --set grid.cell_size=5e-4 --set body.projectile.velocity=[0,0,-4500]"
+              " --set body.projectile.sphere.radius=2e-4 --set "
+              "body.projectile.sphere.center=[0,0,0.5e-3]"
+              " --set body.projectile.particles_per_cell=4 --set run.end_time=1e-6"
+              " --set output.energy_every=1 --set run.max_energy_growth=0.1",
+          &err),
+      3);
   EXPECT_NE(err.find("the total energy grew by"), std::string::npos) << err;
   EXPECT_NE(err.find("(run.max_energy_growth = 10%)"), std::string::npos) << err;
   EXPECT_NE(err.find("this particle moves fastest"), std::string::npos) << err;
@@ -252,17 +274,20 @@ TEST(Cli, HybridBalancesMomentumAndEnergyAndWritesItsFarField) {
   EXPECT_GT(rows.back()[13] + rows.back()[14], 0.1 * E0);  // the far field took a share
   const std::string pvd = read(out / "far_field.pvd");
   int entries = 0;
-  for (auto at = pvd.find("<DataSet"); at != std::string::npos; at = pvd.find("<DataSet", at + 1)) ++entries;
+  for (auto at = pvd.find("<DataSet"); at != std::string::npos; at = pvd.find("<DataSet", at + 1))
+    ++entries;
   EXPECT_EQ(entries, 5);  // t = 0, 1, 2, 3, 4 us
   EXPECT_TRUE(fs::exists(out / "far_field" / "far_field_000000.vtu"));
   EXPECT_NE(read(out / "summary.toml").find("far_field_nodes = 2420"), std::string::npos);
 }
 
 TEST(Cli, HybridOutputIsBitwiseIdenticalForOneAndTwoThreadsAndOnResume) {
-  const fs::path two = scratch("hybrid2"), one = scratch("hybrid1"), parts = scratch("hybrid_parts");
+  const fs::path two = scratch("hybrid2"), one = scratch("hybrid1"),
+                 parts = scratch("hybrid_parts");
   ASSERT_EQ(run("run " + hybrid + " --out " + two.string() + " --threads 2"), 0);
   ASSERT_EQ(run("run " + hybrid + " --out " + one.string() + " --threads 1"), 0);
-  ASSERT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=37"), 0);
+  ASSERT_EQ(
+      run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=37"), 0);
   ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
   for (const fs::path& other : {one, parts}) {
     expect_same_output(two, other);
@@ -279,15 +304,18 @@ TEST(Cli, HybridOutputIsBitwiseIdenticalForOneAndTwoThreadsAndOnResume) {
 }
 
 // The small hybrid with `sets` run on 2 threads into scratch(name), on 1 thread, and stopped at
-// step `stop` (37 unless said) then resumed on 1 thread: all three write the same bytes (snapshots, energy.csv, the
-// far field's VTU files), and the energy balance holds to `bound` (the 0.5% of the elastic hybrid
-// above unless said). Returns the two-thread run's directory.
-fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets, const std::string& name,
-                                                    double bound = 0.005, int stop = 37) {
+// step `stop` (37 unless said) then resumed on 1 thread: all three write the same bytes (snapshots,
+// energy.csv, the far field's VTU files), and the energy balance holds to `bound` (the 0.5% of the
+// elastic hybrid above unless said). Returns the two-thread run's directory.
+fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets,
+                                                    const std::string& name, double bound = 0.005,
+                                                    int stop = 37) {
   const fs::path two = scratch(name), one = scratch(name + "_1"), parts = scratch(name + "_parts");
   EXPECT_EQ(run("run " + hybrid + " --out " + two.string() + " --threads 2" + sets), 0);
   EXPECT_EQ(run("run " + hybrid + " --out " + one.string() + " --threads 1" + sets), 0);
-  EXPECT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=" + std::to_string(stop) + sets), 0);
+  EXPECT_EQ(run("run " + hybrid + " --out " + parts.string() +
+                " --threads 2 --set run.max_steps=" + std::to_string(stop) + sets),
+            0);
   EXPECT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
   for (const fs::path& other : {one, parts}) {
     expect_same_output(two, other);
@@ -310,18 +338,20 @@ fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets, con
 // its plastic state the checkpoints, so a resumed run and a one-thread run repeat the two-thread
 // run byte for byte.
 TEST(Cli, HybridWithPlasticFacesheetsBalancesEnergyAndResumesBitwise) {
-  const std::string j2 = " --set far_field.plasticity=j2 --set material.aluminium.library=Al6061"
-                         " --set material.aluminium.strength=johnson-cook";
+  const std::string j2 =
+      " --set far_field.plasticity=j2 --set material.aluminium.library=Al6061"
+      " --set material.aluminium.strength=johnson-cook";
   const fs::path two = expect_hybrid_balances_and_repeats_bitwise(j2, "hybrid_j2");
   const auto rows = csv_rows(two / "energy.csv");
   ASSERT_FALSE(rows.empty());
   const double E0 = rows.front()[7];
   const double alpha = summary_number(two, "far_field_max_plastic_strain");
   const double work = summary_number(two, "far_field_plastic_work");
-  EXPECT_GT(alpha, 1e-3);     // the far field did yield...
-  EXPECT_GT(work, 1e-4 * E0);  // ...and took plastic work
+  EXPECT_GT(alpha, 1e-3);            // the far field did yield...
+  EXPECT_GT(work, 1e-4 * E0);        // ...and took plastic work
   EXPECT_LT(work, rows.back()[14]);  // which coupled_strain (elastic + plastic) holds
-  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("equivalent_plastic_strain"), std::string::npos);
+  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("equivalent_plastic_strain"),
+            std::string::npos);
 }
 
 // The same J2 hybrid with the facesheets' yield at their strain rate (far_field.strain_rate =
@@ -330,17 +360,19 @@ TEST(Cli, HybridWithPlasticFacesheetsBalancesEnergyAndResumesBitwise) {
 // for byte; the balance holds to the same 0.5%; and the far field, its yield raised by the rate
 // factor (1.07-1.14 at 1e2-1e4 /s), yields less than at the reference rate.
 TEST(Cli, HybridWithRateDependentFacesheetsBalancesEnergyAndResumesBitwise) {
-  const std::string j2 = " --set far_field.plasticity=j2 --set material.aluminium.library=Al6061"
-                         " --set material.aluminium.strength=johnson-cook";
-  const fs::path rate = expect_hybrid_balances_and_repeats_bitwise(j2 + " --set far_field.strain_rate=johnson-cook",
-                                                                  "hybrid_j2_rate");
+  const std::string j2 =
+      " --set far_field.plasticity=j2 --set material.aluminium.library=Al6061"
+      " --set material.aluminium.strength=johnson-cook";
+  const fs::path rate = expect_hybrid_balances_and_repeats_bitwise(
+      j2 + " --set far_field.strain_rate=johnson-cook", "hybrid_j2_rate");
   const fs::path reference = scratch("hybrid_j2_reference");
   ASSERT_EQ(run("run " + hybrid + " --out " + reference.string() + " --threads 2" + j2), 0);
   const double alpha = summary_number(rate, "far_field_max_plastic_strain");
   const double alpha_reference = summary_number(reference, "far_field_max_plastic_strain");
-  EXPECT_GT(alpha, 1e-4);  // it yields...
+  EXPECT_GT(alpha, 1e-4);             // it yields...
   EXPECT_LT(alpha, alpha_reference);  // ...less than at the reference rate
-  EXPECT_LT(summary_number(rate, "far_field_plastic_work"), summary_number(reference, "far_field_plastic_work"));
+  EXPECT_LT(summary_number(rate, "far_field_plastic_work"),
+            summary_number(reference, "far_field_plastic_work"));
 }
 
 // The same J2 hybrid with finite-strain kinematics in the far field (far_field.kinematics =
@@ -350,8 +382,9 @@ TEST(Cli, HybridWithRateDependentFacesheetsBalancesEnergyAndResumesBitwise) {
 // last force evaluation; the next step is chosen before a checkpoint is written and kept in it).
 TEST(Cli, HybridWithFiniteStrainBalancesEnergyAndResumesBitwise) {
   // safety 0.3: the far field's step, which follows its stretch, sets the pace at every step.
-  const std::string finite = " --set far_field.kinematics=finite --set far_field.plasticity=j2 --set far_field.safety=0.3"
-                             " --set material.aluminium.library=Al6061 --set material.aluminium.strength=johnson-cook";
+  const std::string finite =
+      " --set far_field.kinematics=finite --set far_field.plasticity=j2 --set far_field.safety=0.3"
+      " --set material.aluminium.library=Al6061 --set material.aluminium.strength=johnson-cook";
   const fs::path two = expect_hybrid_balances_and_repeats_bitwise(finite, "hybrid_finite");
   const auto rows = csv_rows(two / "energy.csv");
   ASSERT_FALSE(rows.empty());
@@ -368,18 +401,22 @@ TEST(Cli, HybridWithFiniteStrainBalancesEnergyAndResumesBitwise) {
 // failing core's own share is checked against the yielding core's: within 0.1% (measured 0.01%;
 // booking a torn point's elastic predictor each step, a force it never exerts, added 0.5%).
 TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
-  const std::string al5052 = " --set far_field.plasticity=failing --set material.aluminium.library=Al5052"
-                             " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
-                             " --set body.ball.velocity=[0,0,-2000]";
-  const fs::path two = expect_hybrid_balances_and_repeats_bitwise(al5052 + " --set far_field.core=failing",
-                                                                 "hybrid_failing", 0.03);
+  const std::string al5052 =
+      " --set far_field.plasticity=failing --set material.aluminium.library=Al5052"
+      " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
+      " --set body.ball.velocity=[0,0,-2000]";
+  const fs::path two = expect_hybrid_balances_and_repeats_bitwise(
+      al5052 + " --set far_field.core=failing", "hybrid_failing", 0.03);
   EXPECT_GT(summary_number(two, "far_field_core_failed_volume"), 1e-9);  // 1 mm^3: the core tore
   EXPECT_GT(summary_number(two, "far_field_facesheet_failed_volume"), 0.0);  // and a facesheet
-  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("core_damage"), std::string::npos);
-  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("facesheet_damage"), std::string::npos);
+  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("core_damage"),
+            std::string::npos);
+  EXPECT_NE(read(two / "far_field" / "far_field_000000.vtu").find("facesheet_damage"),
+            std::string::npos);
   const fs::path yielding = scratch("hybrid_yielding");
   ASSERT_EQ(run("run " + hybrid + " --out " + yielding.string() + " --threads 2" + al5052 +
-                " --set far_field.core=yielding"), 0);
+                " --set far_field.core=yielding"),
+            0);
   const auto a = csv_rows(two / "energy.csv"), b = csv_rows(yielding / "energy.csv");
   ASSERT_FALSE(a.empty());
   ASSERT_FALSE(b.empty());
@@ -403,19 +440,26 @@ TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
 // hvi measure reads the points born after t = 0.
 TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   const std::string growing =
-      " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
+      " --set far_field.plasticity=failing --set far_field.core=failing --set "
+      "material.aluminium.library=Al5052"
       " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
       " --set body.ball.velocity=[0,0,-2000] --set 'grid.upper=[\"7 mm\",\"7 mm\",\"3 mm\"]'"
-      " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]' --set 'far_field.zone.grow.upper=[\"6 mm\",\"6 mm\"]'"
+      " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]' --set "
+      "'far_field.zone.grow.upper=[\"6 mm\",\"6 mm\"]'"
       " --set 'far_field.zone.grow.step=1 mm' --set 'far_field.zone.grow.margin=1 mm'"
       " --set 'measure.rear_deflection.point=[\"5 mm\",\"0 mm\",\"-4 mm\"]'";
-  const fs::path two = expect_hybrid_balances_and_repeats_bitwise(growing, "hybrid_growing", 0.03, 41);
+  const fs::path two =
+      expect_hybrid_balances_and_repeats_bitwise(growing, "hybrid_growing", 0.03, 41);
   for (const char* other : {"hybrid_growing_1", "hybrid_growing_parts"})
-    EXPECT_TRUE(read(two / "probes.csv") == read(fs::path(testing::TempDir()) / ("hvi_cli_" + std::string(other)) / "probes.csv"))
+    EXPECT_TRUE(read(two / "probes.csv") == read(fs::path(testing::TempDir()) /
+                                                 ("hvi_cli_" + std::string(other)) / "probes.csv"))
         << other;
-  EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"), 1080);  // 27 columns of 40 elements
-  EXPECT_EQ(summary_number(two, "mpm_zone_limit_reached_steps"), 1);  // the far field's tear, at the end
-  EXPECT_NE(read(two / "summary.toml").find("mpm_zone = [ 0.0, 0.0, 0.0060000000000000001, 0.0060000000000000001 ]"),
+  EXPECT_EQ(summary_number(two, "far_field_elements_taken_over"),
+            1080);  // 27 columns of 40 elements
+  EXPECT_EQ(summary_number(two, "mpm_zone_limit_reached_steps"),
+            1);  // the far field's tear, at the end
+  EXPECT_NE(read(two / "summary.toml")
+                .find("mpm_zone = [ 0.0, 0.0, 0.0060000000000000001, 0.0060000000000000001 ]"),
             std::string::npos);
   const auto probe = csv_rows(two / "probes.csv");  // step, time, rear_deflection every 5 steps
   std::size_t taken = 0;  // the first row after the zone took the probe's node (step 79)
@@ -423,7 +467,8 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
   ASSERT_LT(taken + 1, probe.size());
   ASSERT_GE(taken, 1u);
   const double across = probe[taken][2] - probe[taken - 1][2];
-  EXPECT_LT(std::abs(across), 0.05 * std::abs(probe[taken - 1][2])) << across << " from " << probe[taken - 1][2];
+  EXPECT_LT(std::abs(across), 0.05 * std::abs(probe[taken - 1][2]))
+      << across << " from " << probe[taken - 1][2];
   EXPECT_EQ(run("measure " + two.string()), 0);
   EXPECT_NE(read(two / "measurements.json").find("\"perforated\" : true"), std::string::npos);
 }
@@ -431,33 +476,45 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
 // The same growing hybrid with its limit at 5 mm: the damage reaches the zone's edge there at
 // step 122 (y = 5 mm; the points' damage) and 133 (x = 5 mm; the far field's own tear beyond it),
 // and the run says so, once per side, and counts the steps it did in the summary and its closing
-// lines (13 of the 134, from 3.66 us to the end). A run stopped at step 118 and resumed reports the same: the record is
-// in the checkpoint.
+// lines (13 of the 134, from 3.66 us to the end). A run stopped at step 118 and resumed reports the
+// same: the record is in the checkpoint.
 TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
   const std::string growing =
-      " --set far_field.plasticity=failing --set far_field.core=failing --set material.aluminium.library=Al5052"
+      " --set far_field.plasticity=failing --set far_field.core=failing --set "
+      "material.aluminium.library=Al5052"
       " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
       " --set body.ball.velocity=[0,0,-2000] --set 'grid.upper=[\"7 mm\",\"7 mm\",\"3 mm\"]'"
-      " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]' --set 'far_field.zone.grow.upper=[\"5 mm\",\"5 mm\"]'"
+      " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]' --set "
+      "'far_field.zone.grow.upper=[\"5 mm\",\"5 mm\"]'"
       " --set 'far_field.zone.grow.step=1 mm' --set 'far_field.zone.grow.margin=1 mm'";
   const fs::path whole = scratch("hybrid_limit"), parts = scratch("hybrid_limit_parts");
   const std::string log = (fs::path(testing::TempDir()) / "hvi_cli_hybrid_limit.log").string();
-  const std::string command = hvi + " run " + hybrid + " --out " + whole.string() + " --threads 2" + growing + " > " + log + " 2>&1";
+  const std::string command = hvi + " run " + hybrid + " --out " + whole.string() + " --threads 2" +
+                              growing + " > " + log + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const std::string said = read(log);
-  EXPECT_NE(said.find("step 122, t = 3.65608e-06 s: the panel's damage reached the MPM zone's edge at y = 5 mm, its limit"),
-            std::string::npos) << said;
-  EXPECT_NE(said.find("step 133, t = 3.99986e-06 s: the panel's damage reached the MPM zone's edge at x = 5 mm, its limit"),
-            std::string::npos) << said;
-  EXPECT_NE(said.find("MPM zone: [0, 5] x [0, 5] mm, 640 far-field elements taken over; the damage held it at its limit "
+  EXPECT_NE(said.find("step 122, t = 3.65608e-06 s: the panel's damage reached the MPM zone's edge "
+                      "at y = 5 mm, its limit"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("step 133, t = 3.99986e-06 s: the panel's damage reached the MPM zone's edge "
+                      "at x = 5 mm, its limit"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("MPM zone: [0, 5] x [0, 5] mm, 640 far-field elements taken over; the damage "
+                      "held it at its limit "
                       "(x = 5 mm, y = 5 mm) at 13 steps"),
-            std::string::npos) << said;
+            std::string::npos)
+      << said;
   EXPECT_EQ(summary_number(whole, "mpm_zone_limit_reached_steps"), 13);
   EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_first_time"), 3.65608e-6, 1e-11);
   EXPECT_NEAR(summary_number(whole, "mpm_zone_limit_reached_last_time"), 4e-6, 1e-15);
-  ASSERT_EQ(run("run " + hybrid + " --out " + parts.string() + " --threads 2 --set run.max_steps=118" + growing), 0);
+  ASSERT_EQ(run("run " + hybrid + " --out " + parts.string() +
+                " --threads 2 --set run.max_steps=118" + growing),
+            0);
   ASSERT_EQ(run("run --resume " + parts.string() + " --threads 1 --set run.max_steps=0"), 0);
-  for (const char* key : {"mpm_zone_limit_reached_steps", "mpm_zone_limit_reached_first_time", "mpm_zone_limit_reached_last_time"})
+  for (const char* key : {"mpm_zone_limit_reached_steps", "mpm_zone_limit_reached_first_time",
+                          "mpm_zone_limit_reached_last_time"})
     EXPECT_EQ(summary_number(parts, key), summary_number(whole, key)) << key;
 }
 
@@ -469,45 +526,62 @@ TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
 TEST(Cli, ARunSaysWhatItsOutputWillTakeOfTheDisk) {
   const fs::path out = scratch("disk");
   const std::string log = (fs::path(testing::TempDir()) / "hvi_cli_disk.log").string();
-  const std::string command = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + out.string() +
-                              " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' > " + log + " 2>&1";
+  const std::string command =
+      hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + out.string() +
+      " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' > " + log + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const std::string said = read(log);
-  const std::regex line(R"(output: 1 snapshot of about ([0-9.]+) MB and a checkpoint of ([0-9.]+) MB to come, ([0-9.]+) MB in all; [0-9.]+ [kMG]B free on the disk)");
+  const std::regex line(
+      R"(output: 1 snapshot of about ([0-9.]+) MB and a checkpoint of ([0-9.]+) MB to come, ([0-9.]+) MB in all; [0-9.]+ [kMG]B free on the disk)");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(said, m, line)) << said;
-  const double snapshot = std::stod(m[1]) * 1e6, checkpoint = std::stod(m[2]) * 1e6, all = std::stod(m[3]) * 1e6;
-  EXPECT_NEAR(snapshot, static_cast<double>(fs::file_size(out / "snapshots" / "particles_000001.h5")), 0.01 * snapshot);
-  EXPECT_NEAR(checkpoint, static_cast<double>(fs::file_size(out / "checkpoint.h5")), 0.01 * checkpoint);
+  const double snapshot = std::stod(m[1]) * 1e6, checkpoint = std::stod(m[2]) * 1e6,
+               all = std::stod(m[3]) * 1e6;
+  EXPECT_NEAR(snapshot,
+              static_cast<double>(fs::file_size(out / "snapshots" / "particles_000001.h5")),
+              0.01 * snapshot);
+  EXPECT_NEAR(checkpoint, static_cast<double>(fs::file_size(out / "checkpoint.h5")),
+              0.01 * checkpoint);
   EXPECT_NEAR(all, snapshot + 2 * checkpoint, 0.01 * all);
   // Every 0.4 us: 0.4 and 0.8 us, then the end, 3 to come, and so many written.
   const fs::path often = scratch("disk_often");
-  const std::string again = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + often.string() +
-                            " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' > " +
+  const std::string again = hvi + " run " + std::string(HVI_SOURCE_DIR) +
+                            "/cases/demo.toml --out " + often.string() +
+                            " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' "
+                            "--set 'output.interval=0.4 us' > " +
                             log + " 2>&1";
   ASSERT_EQ(std::system(again.c_str()), 0);
   EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos) << read(log);
-  const auto files = std::distance(fs::directory_iterator(often / "snapshots"), fs::directory_iterator());
+  const auto files =
+      std::distance(fs::directory_iterator(often / "snapshots"), fs::directory_iterator());
   EXPECT_EQ(files, 4);
-  // Keeping the newest one, at most two are on the disk at once: the newest, and the one it replaces.
+  // Keeping the newest one, at most two are on the disk at once: the newest, and the one it
+  // replaces.
   const fs::path kept = scratch("disk_kept");
-  const std::string keep = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + kept.string() +
-                           " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us'" +
+  const std::string keep = hvi + " run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " +
+                           kept.string() +
+                           " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm' "
+                           "--set 'output.interval=0.4 us'" +
                            " --set output.keep_snapshots=1 > " + log + " 2>&1";
   ASSERT_EQ(std::system(keep.c_str()), 0);
   EXPECT_NE(read(log).find("output: 2 snapshots of about"), std::string::npos) << read(log);
   EXPECT_EQ(std::distance(fs::directory_iterator(kept / "snapshots"), fs::directory_iterator()), 2);
-  const std::string check_kept = hvi + " check " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --set 'run.end_time=1 us'" +
-                                 " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' --set output.keep_snapshots=1 > " +
+  const std::string check_kept = hvi + " check " + std::string(HVI_SOURCE_DIR) +
+                                 "/cases/demo.toml --set 'run.end_time=1 us'" +
+                                 " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' "
+                                 "--set output.keep_snapshots=1 > " +
                                  log + " 2>&1";
   ASSERT_EQ(std::system(check_kept.c_str()), 0);
-  EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos) << read(log);  // with the first
+  EXPECT_NE(read(log).find("output: 3 snapshots of about"), std::string::npos)
+      << read(log);  // with the first
   // hvi check gives the whole run's: the 4 snapshots and the checkpoint twice.
-  const std::string check = hvi + " check " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --set 'run.end_time=1 us'" +
-                            " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' > " + log + " 2>&1";
+  const std::string check =
+      hvi + " check " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --set 'run.end_time=1 us'" +
+      " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.4 us' > " + log + " 2>&1";
   ASSERT_EQ(std::system(check.c_str()), 0);
   const std::string checked = read(log);
-  const std::regex whole(R"(output: 4 snapshots of about ([0-9.]+) MB and a checkpoint of ([0-9.]+) MB, ([0-9.]+) MB in all)");
+  const std::regex whole(
+      R"(output: 4 snapshots of about ([0-9.]+) MB and a checkpoint of ([0-9.]+) MB, ([0-9.]+) MB in all)");
   ASSERT_TRUE(std::regex_search(checked, m, whole)) << checked;
   EXPECT_EQ(std::stod(m[1]) * 1e6, snapshot);
   EXPECT_EQ(std::stod(m[2]) * 1e6, checkpoint);
@@ -529,9 +603,11 @@ TEST(Cli, TheRunsOwnHoleMeasurementIsTheStandaloneOne) {
   EXPECT_EQ(summary_number(out, "front_perforated"), 1.0);
   EXPECT_EQ(summary_number(out, "rear_perforated"), 0.0);
   EXPECT_GT(summary_number(out, "peak_memory_bytes"), 0.0);
-  EXPECT_GE(summary_number(out, "peak_memory_with_measure_bytes"), summary_number(out, "peak_memory_bytes"));
+  EXPECT_GE(summary_number(out, "peak_memory_with_measure_bytes"),
+            summary_number(out, "peak_memory_bytes"));
   const double D_f = summary_number(out, "D_f");
-  EXPECT_EQ(read(out / "timing.csv").find("measure the holes"), std::string::npos);  // no history asked for
+  EXPECT_EQ(read(out / "timing.csv").find("measure the holes"),
+            std::string::npos);  // no history asked for
   EXPECT_FALSE(fs::exists(out / "holes_history.csv"));
   ASSERT_EQ(run("measure " + out.string()), 0);
   EXPECT_TRUE(read(out / "measurements.json") == own);
@@ -547,7 +623,8 @@ TEST(Cli, TheRunsOwnHoleMeasurementIsTheStandaloneOne) {
 // the run went and rewritten from its checkpoint on a resume, has every row. The demo on 0.8 mm
 // cells to 1 us, a snapshot every 0.25 us.
 TEST(Cli, TheHoleHistoryIsHviMeasuresAndSurvivesKeepingOnlyTheNewestSnapshots) {
-  const std::string demo = " " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --threads 2 --set 'run.end_time=1 us'" +
+  const std::string demo = " " + std::string(HVI_SOURCE_DIR) +
+                           "/cases/demo.toml --threads 2 --set 'run.end_time=1 us'" +
                            " --set 'grid.cell_size=0.8 mm' --set 'output.interval=0.25 us'" +
                            " --set 'measure=[{name=\"holes\",kind=\"holes\",history=true}]'";
   const fs::path all = scratch("history_all"), kept = scratch("history_kept");
@@ -558,7 +635,8 @@ TEST(Cli, TheHoleHistoryIsHviMeasuresAndSurvivesKeepingOnlyTheNewestSnapshots) {
   EXPECT_TRUE(read(all / "measurements_history.csv") == history) << history;
   ASSERT_EQ(run("measure " + all.string()), 0);
   EXPECT_TRUE(read(all / "measurements.json") == final_holes);
-  // Six lines: the header and t = 0, 0.25, 0.5, 0.75 and 1 us; the front sheet perforated by the end.
+  // Six lines: the header and t = 0, 0.25, 0.5, 0.75 and 1 us; the front sheet perforated by the
+  // end.
   std::vector<std::string> lines;
   {
     std::istringstream in(history);
@@ -571,14 +649,19 @@ TEST(Cli, TheHoleHistoryIsHviMeasuresAndSurvivesKeepingOnlyTheNewestSnapshots) {
   EXPECT_NE(read(all / "timing.csv").find("\"measure the holes\","), std::string::npos);
 
   // Keeping the newest two, stopped between snapshots and resumed.
-  ASSERT_EQ(run("run" + demo + " --out " + kept.string() + " --set 'output.keep_snapshots=2' --set run.max_steps=25"), 0);
+  ASSERT_EQ(run("run" + demo + " --out " + kept.string() +
+                " --set 'output.keep_snapshots=2' --set run.max_steps=25"),
+            0);
   ASSERT_EQ(run("run --resume " + kept.string() + " --threads 1 --set run.max_steps=0"), 0);
   std::vector<std::string> files;
-  for (const auto& f : fs::directory_iterator(kept / "snapshots")) files.push_back(f.path().filename().string());
+  for (const auto& f : fs::directory_iterator(kept / "snapshots"))
+    files.push_back(f.path().filename().string());
   std::sort(files.begin(), files.end());
-  EXPECT_EQ(files, (std::vector<std::string>{"particles_000000.h5", "particles_000003.h5", "particles_000004.h5"}));
+  EXPECT_EQ(files, (std::vector<std::string>{"particles_000000.h5", "particles_000003.h5",
+                                             "particles_000004.h5"}));
   const std::string index = read(kept / "particles.xmf");
-  for (const char* n : {"000000", "000003", "000004"}) EXPECT_NE(index.find(n), std::string::npos) << n;
+  for (const char* n : {"000000", "000003", "000004"})
+    EXPECT_NE(index.find(n), std::string::npos) << n;
   for (const char* n : {"000001", "000002"}) EXPECT_EQ(index.find(n), std::string::npos) << n;
   // The same rows but for the run column (the directory's name).
   auto without_run = [](const std::string& csv) {
@@ -619,7 +702,9 @@ kind = "displacement"
 point = ["3 mm", "3 mm", "4 mm"]
 axis = "z"
 )";
-  ASSERT_EQ(run("run " + (dir / "scene.toml").string() + " --out " + (dir / "run").string() + " --threads 2"), 0);
+  ASSERT_EQ(run("run " + (dir / "scene.toml").string() + " --out " + (dir / "run").string() +
+                " --threads 2"),
+            0);
   const auto rows = csv_rows(dir / "run" / "probes.csv");
   ASSERT_GT(rows.size(), 2u);
   for (const auto& r : rows) EXPECT_NEAR(r[2], -250.0 * r[1], 1e-12) << "t = " << r[1];
@@ -632,13 +717,20 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   const fs::path a = scratch("compare_a"), b = scratch("compare_b");
   fs::create_directories(a);
   fs::create_directories(b);
-  std::ofstream(a / "summary.toml") << "status = 'finished'\nwall_seconds = 100.0\nparticles = 1000\n"
-                                       "[measures]\nD_f = 10.0\nD_r = 20.0\n";
-  std::ofstream(b / "summary.toml") << "status = 'finished'\nwall_seconds = 20.0\nwall_seconds_total = 30.0\nparticles = 100\nfar_field_nodes = 50\n"
-                                       "mpm_zone_limit_reached_steps = 12\npeak_memory_bytes = 4e8\npeak_memory_with_measure_bytes = 5e8\n"
-                                       "[measures]\nD_f = 10.5\n";
+  std::ofstream(a / "summary.toml")
+      << "status = 'finished'\nwall_seconds = 100.0\nparticles = 1000\n"
+         "[measures]\nD_f = 10.0\nD_r = 20.0\n";
+  std::ofstream(b / "summary.toml")
+      << "status = 'finished'\nwall_seconds = 20.0\nwall_seconds_total = 30.0\nparticles = "
+         "100\nfar_field_nodes = 50\n"
+         "mpm_zone_limit_reached_steps = 12\npeak_memory_bytes = "
+         "4e8\npeak_memory_with_measure_bytes = 5e8\n"
+         "[measures]\nD_f = 10.5\n";
   const fs::path table = scratch("compare_out.md");
-  ASSERT_EQ(std::system((hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()), 0);
+  ASSERT_EQ(
+      std::system(
+          (hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()),
+      0);
   const std::string t = read(table);
   EXPECT_NE(t.find("| D_f | 10 | 10.5 | +5.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| D_r | 20 | — |  |"), std::string::npos) << t;
@@ -646,18 +738,29 @@ TEST(Cli, CompareTabulatesTwoRunsWithTheirDifference) {
   EXPECT_NE(t.find("| wall time (s) | 100 | 30 | -70.00% |"), std::string::npos) << t;
   EXPECT_NE(t.find("| far-field nodes | — | 50 |  |"), std::string::npos) << t;
   // Keys only one run has: a growing zone's limit record, the command's peak with its measurement.
-  EXPECT_NE(t.find("| steps the damage held the MPM zone at its limit | — | 12 |  |"), std::string::npos) << t;
-  EXPECT_NE(t.find("| peak memory with the hole measurement (MB) | — | 500 |  |"), std::string::npos) << t;
+  EXPECT_NE(t.find("| steps the damage held the MPM zone at its limit | — | 12 |  |"),
+            std::string::npos)
+      << t;
+  EXPECT_NE(t.find("| peak memory with the hole measurement (MB) | — | 500 |  |"),
+            std::string::npos)
+      << t;
   EXPECT_EQ(run("compare " + a.string() + " " + (b / "missing").string()), 2);
 
-  // A hole reaching its sheet's edge (a hybrid's torn zone) is a lower bound, and so is its difference.
-  std::ofstream(b / "summary.toml") << "status = 'finished'\nwall_seconds = 20.0\nparticles = 100\n"
-                                       "[measures]\nD_f = 10.5\nD_r = 19.0\nrear_hole_open = 1.0\nfront_hole_open = 0.0\n";
-  ASSERT_EQ(std::system((hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()), 0);
+  // A hole reaching its sheet's edge (a hybrid's torn zone) is a lower bound, and so is its
+  // difference.
+  std::ofstream(b / "summary.toml")
+      << "status = 'finished'\nwall_seconds = 20.0\nparticles = 100\n"
+         "[measures]\nD_f = 10.5\nD_r = 19.0\nrear_hole_open = 1.0\nfront_hole_open = 0.0\n";
+  ASSERT_EQ(
+      std::system(
+          (hvi + " compare " + a.string() + " " + b.string() + " > " + table.string()).c_str()),
+      0);
   const std::string bounded = read(table);
-  EXPECT_NE(bounded.find("| D_r | 20 | ≥ 19 | -5.00% (B a lower bound) |"), std::string::npos) << bounded;
+  EXPECT_NE(bounded.find("| D_r | 20 | ≥ 19 | -5.00% (B a lower bound) |"), std::string::npos)
+      << bounded;
   EXPECT_NE(bounded.find("| D_f | 10 | 10.5 | +5.00% |"), std::string::npos) << bounded;
-  EXPECT_EQ(bounded.find("held the MPM zone"), std::string::npos) << bounded;  // neither run has the key
+  EXPECT_EQ(bounded.find("held the MPM zone"), std::string::npos)
+      << bounded;  // neither run has the key
 }
 
 // hvi fit A B: the rows of several tables are fitted together (the paper fits eq. 18 to the
@@ -681,7 +784,8 @@ TEST(Cli, FitMergesSeveralTables) {
   const fs::path json = scratch("fit_merged.json");
   const fs::path out = scratch("fit_merged.txt");
   ASSERT_EQ(std::system((hvi + " fit " + a.string() + " " + b.string() + " --form front --json " +
-                         json.string() + " > " + out.string()).c_str()),
+                         json.string() + " > " + out.string())
+                            .c_str()),
             0);
   const std::string t = read(out);
   EXPECT_NE(t.find("6 of 6 rows fitted"), std::string::npos) << t;

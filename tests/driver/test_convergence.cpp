@@ -30,7 +30,8 @@ void expect_recovers(double q_star, double c, double p, double h, double r) {
 
 // `hvi convergence ARGS` with its console in `log`; the exit code (-1 if it did not exit normally).
 int convergence(const std::string& args, const fs::path& log) {
-  const std::string cmd = std::string(HVI_BINARY) + " convergence " + args + " > " + log.string() + " 2>&1";
+  const std::string cmd =
+      std::string(HVI_BINARY) + " convergence " + args + " > " + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -38,26 +39,28 @@ int convergence(const std::string& args, const fs::path& log) {
 }  // namespace
 
 TEST(Convergence, RichardsonRecoversAPowerLawForAnyRatio) {
-  expect_recovers(10.6e-3, 13.0, 1.0, 0.4e-3, 2.0);             // first order, halving
-  expect_recovers(10.6e-3, 13.0, 1.0, 0.4e-3, std::sqrt(2.0));  // first order, sqrt(2) ladder
+  expect_recovers(10.6e-3, 13.0, 1.0, 0.4e-3, 2.0);               // first order, halving
+  expect_recovers(10.6e-3, 13.0, 1.0, 0.4e-3, std::sqrt(2.0));    // first order, sqrt(2) ladder
   expect_recovers(26.5e-3, -2.0e3, 2.0, 0.8e-3, std::sqrt(2.0));  // second order, from below
   expect_recovers(1.0, 0.5, 1.7, 0.3, 1.5);
 }
 
 TEST(Convergence, RichardsonRefusesALadderThatDoesNotConvergeMonotonically) {
-  EXPECT_TRUE(std::isnan(richardson(1.0, 2.0, 1.5, 2.0).value));   // oscillates
-  EXPECT_TRUE(std::isnan(richardson(1.0, 1.0, 1.0, 2.0).order));   // no change
-  EXPECT_TRUE(std::isnan(richardson(1.0, 1.1, 1.3, 2.0).value));   // diverges: order < 0
+  EXPECT_TRUE(std::isnan(richardson(1.0, 2.0, 1.5, 2.0).value));  // oscillates
+  EXPECT_TRUE(std::isnan(richardson(1.0, 1.0, 1.0, 2.0).order));  // no change
+  EXPECT_TRUE(std::isnan(richardson(1.0, 1.1, 1.3, 2.0).value));  // diverges: order < 0
 }
 
 TEST(Convergence, LadderCellSizesFollowTheRatio) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_convergence_ratio";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_convergence_ratio.log";
-  ASSERT_EQ(convergence(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/drift.toml --levels 2 --ratio 1.25 --threads 1 --out " +
-                            out.string(),
-                        log),
-            0)
+  ASSERT_EQ(
+      convergence(std::string(HVI_SOURCE_DIR) +
+                      "/tests/driver/data/drift.toml --levels 2 --ratio 1.25 --threads 1 --out " +
+                      out.string(),
+                  log),
+      0)
       << std::ifstream(log).rdbuf();
   // convergence.csv: level,cell_size,...; the scene's 0.5 mm, then 0.5 / 1.25 = 0.4 mm.
   std::ifstream csv(out / "convergence.csv");
@@ -83,15 +86,18 @@ TEST(Convergence, AFailedLevelSaysWhyOnTheConsole) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_convergence_failed";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_convergence_failed.log";
-  ASSERT_EQ(convergence(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_spheres.toml --levels 2 --threads 1 --out " +
-                            out.string() + " --set grid.shape_function=linear --set grid.scheme=usl",
-                        log),
-            3)
+  ASSERT_EQ(
+      convergence(std::string(HVI_SOURCE_DIR) +
+                      "/tests/driver/data/small_spheres.toml --levels 2 --threads 1 --out " +
+                      out.string() + " --set grid.shape_function=linear --set grid.scheme=usl",
+                  log),
+      3)
       << std::ifstream(log).rdbuf();
   std::stringstream console;
   console << std::ifstream(log).rdbuf();
-  for (const char* part : {"hvi convergence: level h0 failed; see ", "  hvi: the run failed: step ", "non-positive volume",
-                           "  warning: material 'steel' names no equation of state"})
+  for (const char* part :
+       {"hvi convergence: level h0 failed; see ", "  hvi: the run failed: step ",
+        "non-positive volume", "  warning: material 'steel' names no equation of state"})
     EXPECT_NE(console.str().find(part), std::string::npos) << part << " in:\n" << console.str();
   EXPECT_FALSE(fs::exists(out / "h1"));  // the ladder stopped at its first level
 }

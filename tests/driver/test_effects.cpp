@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include "run/build_solver.hpp"
-#include "scene/scene.hpp"
 #include "mpm/io/hdf5_file.hpp"
 #include "mpm/io/snapshot_writer.hpp"
+#include "run/build_solver.hpp"
+#include "scene/scene.hpp"
 
 namespace hvi {
 namespace {
@@ -27,16 +27,18 @@ struct Effects {
   }
 };
 
-Effects run_with(const std::vector<std::string>& models, const std::vector<std::string>& scene_keys = {}) {
+Effects run_with(const std::vector<std::string>& models,
+                 const std::vector<std::string>& scene_keys = {}) {
   omp_set_num_threads(1);
   // Every model key set: what `models` does not name is switched off.
-  std::vector<std::string> overrides = {"strength=none",  "eos=none",     "viscosity=none",
-                                        "damage=none",    "failure=none", "heating=none",
+  std::vector<std::string> overrides = {"strength=none", "eos=none",     "viscosity=none",
+                                        "damage=none",   "failure=none", "heating=none",
                                         "erosion=none"};
   for (const auto& m : models) overrides.push_back(m);
   for (auto& o : overrides) o = "material.Al6061." + o;
   overrides.insert(overrides.end(), scene_keys.begin(), scene_keys.end());
-  const auto scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/cases/verification/plate_impact.toml", overrides);
+  const auto scene = scene::load_scene(
+      std::string(HVI_SOURCE_DIR) + "/cases/verification/plate_impact.toml", overrides);
   auto solver = driver::make_solver(scene);
   driver::add_bodies(scene, *solver);
   solver->initialise();
@@ -45,24 +47,28 @@ Effects run_with(const std::vector<std::string>& models, const std::vector<std::
   for (const auto& f : solver->particles().real_fields()) e.fields.insert(f.name);
   for (const auto& p : solver->timer().entries()) e.phases.insert(p.name);
   // One folder per test: ctest runs the tests of this file side by side.
-  const auto dir = std::filesystem::path(testing::TempDir()) /
-                   ("hvi_effects_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+  const auto dir =
+      std::filesystem::path(testing::TempDir()) /
+      ("hvi_effects_" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::remove_all(dir);
   mpm::io::SnapshotWriter writer(dir);
   writer.write(*solver);
-  mpm::io::Hdf5File file((dir / mpm::io::SnapshotWriter::file_name(0)).string(), mpm::io::Hdf5File::Mode::read);
+  mpm::io::Hdf5File file((dir / mpm::io::SnapshotWriter::file_name(0)).string(),
+                         mpm::io::Hdf5File::Mode::read);
   for (const auto& d : file.dataset_names()) e.datasets.insert(d);
   return e;
 }
 
 struct Model {
-  std::string key;                   // scene setting that names it
-  std::vector<std::string> fields;   // particle fields it owns (also snapshot datasets)
-  std::string phase;                 // its row in the timing table
+  std::string key;                  // scene setting that names it
+  std::vector<std::string> fields;  // particle fields it owns (also snapshot datasets)
+  std::string phase;                // its row in the timing table
 };
 
 const std::vector<Model> models = {
-    {"strength=johnson-cook", {"plastic_strain", "plastic_strain_rate", "plastic_work"}, "strength: johnson-cook"},
+    {"strength=johnson-cook",
+     {"plastic_strain", "plastic_strain_rate", "plastic_work"},
+     "strength: johnson-cook"},
     {"damage=johnson-cook", {"damage", "failed"}, "damage: johnson-cook"},
     {"failure=max-principal-stress", {"failed"}, "failure: max-principal-stress"},
     {"heating=adiabatic", {"temperature"}, "heating: adiabatic"},
@@ -72,10 +78,10 @@ const std::vector<Model> models = {
 
 // The scene names every model; taking out one removes exactly its fields and phase.
 TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
-  std::vector<std::string> all = {"strength=johnson-cook", "eos=mie-gruneisen", "viscosity=bulk",
-                                  "damage=johnson-cook", "heating=adiabatic",
-                                  "max_principal_stress.limit=1.5e9", "failure=max-principal-stress",
-                                  "erosion=compression"};
+  std::vector<std::string> all = {
+      "strength=johnson-cook",        "eos=mie-gruneisen",  "viscosity=bulk",
+      "damage=johnson-cook",          "heating=adiabatic",  "max_principal_stress.limit=1.5e9",
+      "failure=max-principal-stress", "erosion=compression"};
   const Effects full = run_with(all);
   for (const auto& m : models) {
     for (const auto& f : m.fields) {
@@ -90,7 +96,8 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
     std::vector<std::string> without;
     for (const auto& k : all) {
       if (k == m.key) continue;
-      if (m.key == "failure=max-principal-stress" && k.rfind("max_principal_stress", 0) == 0) continue;
+      if (m.key == "failure=max-principal-stress" && k.rfind("max_principal_stress", 0) == 0)
+        continue;
       without.push_back(k);
     }
     if (m.key == "strength=johnson-cook") without = {"eos=mie-gruneisen", "viscosity=bulk"};
@@ -98,7 +105,8 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
     EXPECT_FALSE(e.runs(m.phase)) << m.phase;
     for (const auto& f : m.fields) {
       // "failed" belongs to damage, failure and erosion: it goes only when none is named.
-      const bool shared = f == "failed" && (m.key == "damage=johnson-cook" || m.key == "failure=max-principal-stress" ||
+      const bool shared = f == "failed" && (m.key == "damage=johnson-cook" ||
+                                            m.key == "failure=max-principal-stress" ||
                                             m.key == "erosion=compression");
       if (shared) continue;
       EXPECT_FALSE(e.fields.count(f)) << f;
@@ -117,8 +125,9 @@ TEST(Effects, AModelNotNamedIsNotAllocatedComputedOrWritten) {
 TEST(Effects, TulerButcherIsAllocatedComputedAndWrittenOnlyWhenNamed) {
   const std::vector<std::string> jc = {"strength=johnson-cook", "eos=mie-gruneisen"};
   const Effects plain = run_with(jc);
-  const Effects named = run_with({"strength=johnson-cook", "eos=mie-gruneisen", "failure=tuler-butcher",
-                                  "tuler_butcher.threshold=1.5e9", "tuler_butcher.time=1e-8"});
+  const Effects named =
+      run_with({"strength=johnson-cook", "eos=mie-gruneisen", "failure=tuler-butcher",
+                "tuler_butcher.threshold=1.5e9", "tuler_butcher.time=1e-8"});
   for (const std::string f : {"spall_damage", "failed"}) {
     EXPECT_FALSE(plain.fields.count(f)) << f;
     EXPECT_FALSE(plain.datasets.count(f)) << f;
@@ -145,7 +154,8 @@ void phases_only_when_named(const std::string& setting, const std::vector<std::s
 
 // The node-averaged dilatation (grid.dilatation): two passes over the points.
 TEST(Effects, NodeAveragedDilatationRunsOnlyWhenNamed) {
-  phases_only_when_named("grid.dilatation=node-average", {"dilatation: node average", "mean stress: node average"});
+  phases_only_when_named("grid.dilatation=node-average",
+                         {"dilatation: node average", "mean stress: node average"});
 }
 
 // Contact ([contact]): a second grid, a normal pass and the corrections.

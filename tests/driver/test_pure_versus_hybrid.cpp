@@ -4,7 +4,8 @@
 // elements beyond), at 200 m/s instead of 2.2 or 4.5 km/s: it punches a 10.2 mm plug out of the
 // front sheet and stops in the core (rear sheet NP, bulging 0.17 mm), so nothing fails near the
 // probe (the far field's plastic strain stays below 0.2%) and what is compared is the far field
-// alone; at 2.2 km/s the rear sheet tears to within 8 mm of the probe (docs/verification/pure_vs_hybrid.md).
+// alone; at 2.2 km/s the rear sheet tears to within 8 mm of the probe
+// (docs/verification/pure_vs_hybrid.md).
 //
 // The plug's hole D_f agrees within the 5% (measured -0.7%), both rear sheets hold, and
 // the rear facesheet's deflection 20 mm from the axis, along x and along y, agrees within the
@@ -35,7 +36,7 @@ using hvi::test::summary_number;
 // deflection_20mm_y) and its measured holes.
 struct PairRun {
   std::vector<std::vector<double>> rows;
-  double front_hole = 0;      // D_f, m
+  double front_hole = 0;       // D_f, m
   double rear_perforated = 0;  // 1 or 0
   // The probe in `column` at time t, linear between the rows around it.
   double at(double t, std::size_t column) const {
@@ -53,9 +54,12 @@ PairRun run_case(const std::string& file, const std::string& name) {
   const std::string sets =
       " --threads 2 --set 'body.projectile.velocity=[\"0 m/s\", \"0 m/s\", \"-200 m/s\"]'"
       " --set run.end_time=40us --set output.interval=20us";
-  EXPECT_EQ(run("run " + std::string(HVI_SOURCE_DIR) + "/cases/hybrid/" + file + " --out " + out.string() + sets), 0);
+  EXPECT_EQ(run("run " + std::string(HVI_SOURCE_DIR) + "/cases/hybrid/" + file + " --out " +
+                out.string() + sets),
+            0);
   std::string header;
-  PairRun r{csv_rows(out / "probes.csv", &header), summary_number(out, "D_f"), summary_number(out, "rear_perforated")};
+  PairRun r{csv_rows(out / "probes.csv", &header), summary_number(out, "D_f"),
+            summary_number(out, "rear_perforated")};
   EXPECT_EQ(header, "step,time,deflection_20mm,deflection_20mm_y");
   fs::remove_all(out);
   return r;
@@ -66,7 +70,8 @@ TEST(PureVersusHybridLong, FarFieldDeflectionFollowsTheAllMpmPanel) {
   const PairRun hybrid = run_case("panel_60mm_hybrid.toml", "hybrid_200");
   // The hole target, 5%, on the plug the sphere punches (measured 10.25 and 10.18 mm);
   // the rear sheet holds in both.
-  std::printf("D_f: pure %.3f mm, hybrid %.3f mm\n", pure.front_hole * 1e3, hybrid.front_hole * 1e3);
+  std::printf("D_f: pure %.3f mm, hybrid %.3f mm\n", pure.front_hole * 1e3,
+              hybrid.front_hole * 1e3);
   EXPECT_NEAR(hybrid.front_hole, pure.front_hole, 0.05 * pure.front_hole);
   EXPECT_EQ(pure.rear_perforated, 0.0);
   EXPECT_EQ(hybrid.rear_perforated, 0.0);

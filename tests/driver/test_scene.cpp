@@ -57,14 +57,17 @@ std::string replace(std::string text, const std::string& from, const std::string
   return text.replace(at, from.size(), to);
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 // A cell size that divides the extent but for round-off (0.4 mm / sqrt(2)^2, a level of
 // `hvi convergence --ratio 1.41421`) keeps the requested bound rather than falling a hair short,
 // so a body flush with it still fits.
 TEST(Scene, GridBoundStaysPutUnderRoundOffOfTheCellSize) {
-  const Scene s = parse_scene(valid, "scene.toml",
-                              {"grid.upper=[\"18 mm\", \"5 mm\", \"5 mm\"]", "grid.cell_size=0.00019999999999999996 m"});
+  const Scene s = parse_scene(
+      valid, "scene.toml",
+      {"grid.upper=[\"18 mm\", \"5 mm\", \"5 mm\"]", "grid.cell_size=0.00019999999999999996 m"});
   EXPECT_EQ(s.grid.cells[0], 90);
   EXPECT_EQ(s.grid.upper[0], 18e-3);
 }
@@ -73,7 +76,8 @@ TEST(Scene, GridBoundStaysPutUnderRoundOffOfTheCellSize) {
 // Sweep.ShippedPaperStudiesResolve; a study file names its `scene = ...`).
 TEST(Scene, EveryShippedSceneResolves) {
   int scenes = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(std::string(HVI_SOURCE_DIR) + "/cases")) {
+  for (const auto& entry :
+       std::filesystem::recursive_directory_iterator(std::string(HVI_SOURCE_DIR) + "/cases")) {
     if (entry.path().extension() != ".toml") continue;
     std::ifstream in(entry.path());
     std::stringstream text;
@@ -88,9 +92,9 @@ TEST(Scene, EveryShippedSceneResolves) {
 TEST(Scene, ResolvesDefaultsAndUnits) {
   const Scene s = parse_scene(valid, "scene.toml");
   EXPECT_DOUBLE_EQ(s.end_time, 10e-6);
-  EXPECT_DOUBLE_EQ(s.output_interval, 1e-6);       // end_time / 10
-  EXPECT_DOUBLE_EQ(s.checkpoint_interval, 1e-6);   // the snapshot interval
-  EXPECT_EQ(s.grid.cells[0], 21);                  // 10.2 mm rounds up to 21 cells of 0.5 mm
+  EXPECT_DOUBLE_EQ(s.output_interval, 1e-6);      // end_time / 10
+  EXPECT_DOUBLE_EQ(s.checkpoint_interval, 1e-6);  // the snapshot interval
+  EXPECT_EQ(s.grid.cells[0], 21);                 // 10.2 mm rounds up to 21 cells of 0.5 mm
   EXPECT_DOUBLE_EQ(s.grid.upper[0], 10.5e-3);
   EXPECT_EQ(s.grid.shape_function, "cpgimp");
   EXPECT_EQ(s.grid.scheme, "musl");
@@ -130,7 +134,8 @@ TEST(Scene, WrongUnitNamesWhatWasExpected) {
 }
 
 TEST(Scene, OutOfRangeValueNamesTheRange) {
-  const Diagnostic d = first_error(replace(valid, "cell_size = \"0.5 mm\"", "cell_size = \"0.5 mm\"\ncfl = 1.5"));
+  const Diagnostic d =
+      first_error(replace(valid, "cell_size = \"0.5 mm\"", "cell_size = \"0.5 mm\"\ncfl = 1.5"));
   EXPECT_EQ(d.line, 9);
   EXPECT_EQ(d.key, "grid.cfl");
   EXPECT_TRUE(contains(d.text(), "(0, 0.9]")) << d.text();
@@ -159,7 +164,8 @@ TEST(Scene, UnknownMaterialIsNamedAtTheBody) {
 }
 
 TEST(Scene, BoundaryPlaneMustLieOnGridNodes) {
-  const Diagnostic d = first_error(replace(valid, "type = \"symmetry\"", "type = \"symmetry\"\nposition = \"0.3 mm\""));
+  const Diagnostic d = first_error(
+      replace(valid, "type = \"symmetry\"", "type = \"symmetry\"\nposition = \"0.3 mm\""));
   EXPECT_EQ(d.key, "boundary.0.position");
   EXPECT_EQ(d.line, 13);
   EXPECT_TRUE(contains(d.text(), "does not lie on grid nodes")) << d.text();
@@ -185,7 +191,8 @@ TEST(Scene, BadOverrideNamesTheCommandLine) {
 }
 
 TEST(Scene, OverrideAddressesBodiesByName) {
-  const Scene s = parse_scene(valid, "scene.toml", {"body.ball.velocity=[0, 0, -4500]", "grid.scheme=usl"});
+  const Scene s =
+      parse_scene(valid, "scene.toml", {"body.ball.velocity=[0, 0, -4500]", "grid.scheme=usl"});
   EXPECT_DOUBLE_EQ(s.bodies[0].velocity[2], -4500.0);
   EXPECT_EQ(s.grid.scheme, "usl");
 }
@@ -259,7 +266,8 @@ TEST(Scene, ResolutionSetsApplyTheirOverrides) {
   EXPECT_DOUBLE_EQ(fine.bodies[0].velocity[2], -2000.0);
   EXPECT_EQ(fine.bodies[0].particles_per_cell, 2);  // the default: "fine" does not set it
 
-  const Scene mixed = parse_scene(with_resolutions, "scene.toml", {"resolution=fine", "grid.cell_size=0.5 mm"});
+  const Scene mixed =
+      parse_scene(with_resolutions, "scene.toml", {"resolution=fine", "grid.cell_size=0.5 mm"});
   EXPECT_DOUBLE_EQ(mixed.grid.cell_size, 0.5e-3);  // the command line wins
 }
 
@@ -276,7 +284,8 @@ TEST(Scene, HolesMeasureNeedsAPanelOrAPlate) {
   const std::string holes = "\n[[measure]]\nname = \"holes\"\nkind = \"holes\"\n";
   const Diagnostic d = error_for(valid + holes, "measure.holes");
   EXPECT_TRUE(contains(d.message, "[[panel]]")) << d.text();
-  const Scene s = parse_scene(valid + holes + "body = \"ball\"\n", "scene.toml");  // the plate named
+  const Scene s =
+      parse_scene(valid + holes + "body = \"ball\"\n", "scene.toml");  // the plate named
   EXPECT_EQ(s.measures.at(0).body, "ball");
 }
 

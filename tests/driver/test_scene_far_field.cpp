@@ -50,14 +50,16 @@ TEST(SceneFarField, WithoutTheTableThereIsNoFarField) {
   std::string text = small_hybrid();
   const auto from = text.find("\n[far_field]"), to = text.find("\n[[measure]]");
   text.erase(from, to - from);
-  const Scene s = parse_scene(text, "small_hybrid.toml", {"grid.upper=[\"11 mm\", \"11 mm\", \"3 mm\"]"});
+  const Scene s =
+      parse_scene(text, "small_hybrid.toml", {"grid.upper=[\"11 mm\", \"11 mm\", \"3 mm\"]"});
   EXPECT_FALSE(s.far_field.has_value());
   EXPECT_FALSE(s.resolved.contains("far_field"));
 }
 
 TEST(SceneFarField, ErrorsNameTheKey) {
   Diagnostic d = error_for({"far_field.panel=plate"}, "far_field.panel");
-  EXPECT_NE(d.message.find("no [[panel]] named 'plate'; panels: 'panel'"), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("no [[panel]] named 'plate'; panels: 'panel'"), std::string::npos)
+      << d.message;
   EXPECT_GT(d.line, 0);
 
   d = error_for({"far_field.zone.upper=[\"3.2 mm\", \"3 mm\"]"}, "far_field.zone");
@@ -73,7 +75,8 @@ TEST(SceneFarField, ErrorsNameTheKey) {
   d = error_for({"far_field.max_element=0.2 mm"}, "far_field.max_element");
   EXPECT_NE(d.message.find("smaller than a grid cell"), std::string::npos) << d.message;
 
-  d = error_for({"panel.panel.double_walls=true", "panel.panel.rotation=30 deg"}, "far_field.panel");
+  d = error_for({"panel.panel.double_walls=true", "panel.panel.rotation=30 deg"},
+                "far_field.panel");
   EXPECT_NE(d.message.find("multiple of 90 deg"), std::string::npos) << d.message;
 
   d = error_for({"far_field.edges=pinned"}, "far_field.edges");
@@ -84,35 +87,44 @@ TEST(SceneFarField, ErrorsNameTheKey) {
 
   // J2 facesheets harden as their material's Johnson-Cook strength: the elastic aluminium has none.
   d = error_for({"far_field.plasticity=j2"}, "far_field.plasticity");
-  EXPECT_NE(d.message.find("'aluminium' (panel.front) names strength = \"elastic\""), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("'aluminium' (panel.front) names strength = \"elastic\""),
+            std::string::npos)
+      << d.message;
 
   // A yielding core caps its stresses at its walls' yield, their Johnson-Cook A.
   d = error_for({"far_field.core=yielding"}, "far_field.core");
-  EXPECT_NE(d.message.find("'aluminium' (panel.core) names strength = \"elastic\""), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("'aluminium' (panel.core) names strength = \"elastic\""),
+            std::string::npos)
+      << d.message;
   d = error_for({"far_field.core=crushable"}, "far_field.core");
   EXPECT_NE(d.message.find("yielding"), std::string::npos) << d.message;
   // A failing core also tears its walls by their Johnson-Cook damage: strength alone is not enough.
-  d = error_for({"far_field.core=failing", "material.aluminium.library=Al6061", "material.aluminium.strength=johnson-cook"},
+  d = error_for({"far_field.core=failing", "material.aluminium.library=Al6061",
+                 "material.aluminium.strength=johnson-cook"},
                 "far_field.core");
-  EXPECT_NE(d.message.find("'aluminium' (panel.core) names damage = \"none\""), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("'aluminium' (panel.core) names damage = \"none\""), std::string::npos)
+      << d.message;
   // Failing facesheets harden (strength) and tear (damage) as their material's Johnson-Cook models.
   d = error_for({"far_field.plasticity=failing", "material.aluminium.library=Al6061",
                  "material.aluminium.strength=johnson-cook"},
                 "far_field.plasticity");
   EXPECT_NE(d.message.find("\"failing\" tears the facesheets"), std::string::npos) << d.message;
-  EXPECT_NE(d.message.find("'aluminium' (panel.front) names damage = \"none\""), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("'aluminium' (panel.front) names damage = \"none\""), std::string::npos)
+      << d.message;
 }
 
 TEST(SceneFarField, FailingFacesheetsOnlyWhenNamed) {
-  const Scene j2 = parse_scene(small_hybrid(), "small_hybrid.toml",
-                               {"far_field.plasticity=j2", "material.aluminium.library=Al6061",
-                                "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
+  const Scene j2 = parse_scene(
+      small_hybrid(), "small_hybrid.toml",
+      {"far_field.plasticity=j2", "material.aluminium.library=Al6061",
+       "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
   EXPECT_TRUE(j2.far_field->plastic_faces);
   EXPECT_FALSE(j2.far_field->failing_faces);
   // "failing" facesheets are J2 facesheets that also tear.
-  const Scene f = parse_scene(small_hybrid(), "small_hybrid.toml",
-                              {"far_field.plasticity=failing", "material.aluminium.library=Al6061",
-                               "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
+  const Scene f = parse_scene(
+      small_hybrid(), "small_hybrid.toml",
+      {"far_field.plasticity=failing", "material.aluminium.library=Al6061",
+       "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
   EXPECT_TRUE(f.far_field->plastic_faces);
   EXPECT_TRUE(f.far_field->failing_faces);
   EXPECT_FALSE(f.far_field->yielding_core);
@@ -131,9 +143,10 @@ TEST(SceneFarField, YieldingCoreOnlyWhenNamed) {
   EXPECT_FALSE(s.far_field->plastic_faces);
   EXPECT_FALSE(small.far_field->failing_core);
   // "failing" is a yielding core whose walls also tear.
-  const Scene f = parse_scene(small_hybrid(), "small_hybrid.toml",
-                              {"far_field.core=failing", "material.aluminium.library=Al6061",
-                               "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
+  const Scene f = parse_scene(
+      small_hybrid(), "small_hybrid.toml",
+      {"far_field.core=failing", "material.aluminium.library=Al6061",
+       "material.aluminium.strength=johnson-cook", "material.aluminium.damage=johnson-cook"});
   EXPECT_TRUE(f.far_field->yielding_core);
   EXPECT_TRUE(f.far_field->failing_core);
   EXPECT_EQ(f.resolved["far_field"]["core"].value_or(std::string{}), "failing");
@@ -143,7 +156,8 @@ TEST(SceneFarField, YieldingCoreOnlyWhenNamed) {
 // the impactor's field.
 TEST(SceneFarField, ContactRefusesThePanelsParts) {
   const Diagnostic d = error_for({"contact.bodies=[\"panel.front\"]"}, "contact.bodies");
-  EXPECT_NE(d.text().find("'panel.front' is part of the far field's panel"), std::string::npos) << d.text();
+  EXPECT_NE(d.text().find("'panel.front' is part of the far field's panel"), std::string::npos)
+      << d.text();
 }
 
 TEST(SceneFarField, PlasticFacesheetsOnlyWhenNamed) {
@@ -160,9 +174,10 @@ TEST(SceneFarField, StrainRateOnlyWhenNamedAndOnlyForJ2Facesheets) {
   const Scene small = parse_scene(small_hybrid(), "small_hybrid.toml");
   EXPECT_FALSE(small.far_field->strain_rate);
   EXPECT_EQ(small.resolved["far_field"]["strain_rate"].value_or(std::string{}), "reference");
-  const Scene s = parse_scene(small_hybrid(), "small_hybrid.toml",
-                              {"far_field.plasticity=j2", "far_field.strain_rate=johnson-cook",
-                               "material.aluminium.library=Al6061", "material.aluminium.strength=johnson-cook"});
+  const Scene s = parse_scene(
+      small_hybrid(), "small_hybrid.toml",
+      {"far_field.plasticity=j2", "far_field.strain_rate=johnson-cook",
+       "material.aluminium.library=Al6061", "material.aluminium.strength=johnson-cook"});
   EXPECT_TRUE(s.far_field->strain_rate);
   EXPECT_EQ(s.resolved["far_field"]["strain_rate"].value_or(std::string{}), "johnson-cook");
   Diagnostic d = error_for({"far_field.strain_rate=johnson-cook"}, "far_field.strain_rate");
@@ -179,7 +194,6 @@ TEST(SceneFarField, FiniteStrainOnlyWhenNamed) {
   EXPECT_TRUE(s.far_field->finite_strain);
   EXPECT_EQ(s.resolved["far_field"]["kinematics"].value_or(std::string{}), "finite");
 }
-
 
 // [far_field.zone.grow]: a zone that grows, with step and margin defaulting to 8 and 4 grid cells
 // (recorded in the resolved scene); absent, the zone stays.
@@ -202,18 +216,20 @@ TEST(SceneFarField, AGrowingZoneResolvesItsLimitAndDefaults) {
   const auto& g = *s.far_field->grow;
   EXPECT_DOUBLE_EQ(g.limit[2], 6e-3);
   EXPECT_DOUBLE_EQ(g.limit[3], 6e-3);
-  EXPECT_DOUBLE_EQ(g.step, 4e-3);     // 8 cells of 0.5 mm
-  EXPECT_DOUBLE_EQ(g.margin, 2e-3);   // 4 cells
+  EXPECT_DOUBLE_EQ(g.step, 4e-3);    // 8 cells of 0.5 mm
+  EXPECT_DOUBLE_EQ(g.margin, 2e-3);  // 4 cells
   EXPECT_DOUBLE_EQ(g.damage, 1.0);
   EXPECT_DOUBLE_EQ(s.resolved["far_field"]["zone"]["grow"]["step"].value_or(0.0), 4e-3);
   EXPECT_DOUBLE_EQ(s.resolved["far_field"]["zone"]["grow"]["margin"].value_or(0.0), 2e-3);
 }
 
 TEST(SceneFarField, AGrowingZonesErrorsNameTheKey) {
-  Diagnostic d = error_for(growing_with({"far_field.zone.grow.upper=[\"2 mm\", \"6 mm\"]"}), "far_field.zone.grow.upper");
+  Diagnostic d = error_for(growing_with({"far_field.zone.grow.upper=[\"2 mm\", \"6 mm\"]"}),
+                           "far_field.zone.grow.upper");
   EXPECT_NE(d.message.find("must hold the zone's"), std::string::npos) << d.message;
 
-  d = error_for(growing_with({"far_field.zone.grow.upper=[\"5.2 mm\", \"6 mm\"]"}), "far_field.zone.grow.upper");
+  d = error_for(growing_with({"far_field.zone.grow.upper=[\"5.2 mm\", \"6 mm\"]"}),
+                "far_field.zone.grow.upper");
   EXPECT_NE(d.message.find("not on a grid plane"), std::string::npos) << d.message;
 
   // The grid ends at 7 mm: a 6 mm limit and 3 band cells of 0.5 mm reach 7.5 mm.

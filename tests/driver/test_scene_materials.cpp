@@ -17,11 +17,13 @@ lower = ["0 mm", "0 mm", "0 mm"]
 upper = ["4 mm", "4 mm", "4 mm"]
 cell_size = "0.5 mm"
 [[material]]
-)" + material + R"(
+)" + material +
+         R"(
 [[body]]
 name = "b"
 material = "m"
-velocity = [")" + speed + R"(", "0 m/s", "0 m/s"]
+velocity = [")" +
+         speed + R"(", "0 m/s", "0 m/s"]
 sphere = { center = ["2 mm", "2 mm", "2 mm"], radius = "1 mm" }
 )";
 }
@@ -31,7 +33,8 @@ TEST(SceneMaterials, LibraryFillsParametersAndTheResolvedSceneRecordsThem) {
 library = "Al6061"
 strength = "johnson-cook"
 eos = "mie-gruneisen"
-johnson_cook = { A = "300 MPa" })"), "scene.toml");
+johnson_cook = { A = "300 MPa" })"),
+                              "scene.toml");
   const auto& h = s.materials[0].models;
   EXPECT_DOUBLE_EQ(h.johnson_cook->A, 300e6);  // the scene's value wins
   EXPECT_DOUBLE_EQ(h.johnson_cook->B, 426e6);  // from the library (paper Table 4)
@@ -52,12 +55,15 @@ density = "2.7 g/cm^3"
 youngs_modulus = "70 GPa"
 poisson_ratio = 0.3
 strength = "johnson-cook"
-johnson_cook = { A = "300 MPa", B = "400 MPa", n = 0.3, C = 0.01 })"), "scene.toml");
+johnson_cook = { A = "300 MPa", B = "400 MPa", n = 0.3, C = 0.01 })"),
+                "scene.toml");
     FAIL() << "accepted";
   } catch (const SceneError& e) {
     bool found = false;
     for (const auto& d : e.diagnostics())
-      if (d.key == "material.m.johnson_cook" && d.message.find("missing parameter 'm'") != std::string::npos) found = true;
+      if (d.key == "material.m.johnson_cook" &&
+          d.message.find("missing parameter 'm'") != std::string::npos)
+        found = true;
     EXPECT_TRUE(found) << e.diagnostics().front().text();
   }
 }
@@ -66,7 +72,8 @@ TEST(SceneMaterials, ParametersForAModelNotNamedAreRefused) {
   try {
     parse_scene(scene_with(R"(name = "m"
 library = "Al6061"
-mie_gruneisen = { c0 = "5 km/s" })"), "scene.toml");
+mie_gruneisen = { c0 = "5 km/s" })"),
+                "scene.toml");
     FAIL() << "accepted";
   } catch (const SceneError& e) {
     const auto& d = e.diagnostics().front();
@@ -82,7 +89,8 @@ TEST(SceneMaterials, TulerButcherTakesTheLibraryThresholdAndNeedsItsTime) {
   const Scene s = parse_scene(scene_with(R"(name = "m"
 library = "Al2024-T81"
 failure = "tuler-butcher"
-tuler_butcher = { time = "20 ns" })"), "scene.toml");
+tuler_butcher = { time = "20 ns" })"),
+                              "scene.toml");
   const auto& tb = *s.materials[0].models.tuler_butcher;
   EXPECT_DOUBLE_EQ(tb.threshold, 1500e6);  // Table 1's spall stress
   EXPECT_DOUBLE_EQ(tb.exponent, 2.0);
@@ -92,12 +100,15 @@ tuler_butcher = { time = "20 ns" })"), "scene.toml");
   try {
     parse_scene(scene_with(R"(name = "m"
 library = "Al2024-T81"
-failure = "tuler-butcher")"), "scene.toml");
+failure = "tuler-butcher")"),
+                "scene.toml");
     FAIL() << "accepted";
   } catch (const SceneError& e) {
     bool found = false;
     for (const auto& d : e.diagnostics())
-      if (d.key == "material.m.tuler_butcher" && d.message.find("missing parameter 'time'") != std::string::npos) found = true;
+      if (d.key == "material.m.tuler_butcher" &&
+          d.message.find("missing parameter 'time'") != std::string::npos)
+        found = true;
     EXPECT_TRUE(found) << e.diagnostics().front().text();
   }
 }
@@ -114,12 +125,15 @@ TEST(SceneMaterials, LibraryNameTypoGetsASuggestion) {
 
 TEST(SceneMaterials, FastImpactWithoutEquationOfStateWarns) {
   const std::string elastic = "name = \"m\"\nlibrary = \"Al6061\"";
-  // Bulk sound speed of Al6061 from E = 75 GPa, nu = 0.33: sqrt(K / rho) = 5.15 km/s; 10% is 515 m/s.
+  // Bulk sound speed of Al6061 from E = 75 GPa, nu = 0.33: sqrt(K / rho) = 5.15 km/s; 10% is 515
+  // m/s.
   EXPECT_TRUE(parse_scene(scene_with(elastic, "200 m/s"), "s.toml").warnings.empty());
   const Scene fast = parse_scene(scene_with(elastic, "4.5 km/s"), "s.toml");
   ASSERT_EQ(fast.warnings.size(), 1u);
-  EXPECT_NE(fast.warnings[0].find("names no equation of state"), std::string::npos) << fast.warnings[0];
-  EXPECT_TRUE(parse_scene(scene_with(elastic + "\neos = \"mie-gruneisen\"", "4.5 km/s"), "s.toml").warnings.empty());
+  EXPECT_NE(fast.warnings[0].find("names no equation of state"), std::string::npos)
+      << fast.warnings[0];
+  EXPECT_TRUE(parse_scene(scene_with(elastic + "\neos = \"mie-gruneisen\"", "4.5 km/s"), "s.toml")
+                  .warnings.empty());
 }
 
 }  // namespace

@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
-#include "scene/scene.hpp"
 #include "cli/sweep_command.hpp"
+#include "scene/scene.hpp"
 
 namespace fs = std::filesystem;
 
@@ -53,13 +53,15 @@ std::map<std::string, std::map<std::string, std::string>> table(const fs::path& 
   std::map<std::string, std::map<std::string, std::string>> rows;
   while (std::getline(in, line)) {
     const auto cells = split(line);
-    for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k) rows[cells[0]][header[k]] = cells[k];
+    for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k)
+      rows[cells[0]][header[k]] = cells[k];
   }
   return rows;
 }
 
 TEST(Sweep, StudyExpandsToTheProductOfItsAxesAndItsRuns) {
-  const hvi::driver::Study s = hvi::driver::load_study(data + "drift_study.toml", {"grid.cell_size=1 mm"});
+  const hvi::driver::Study s =
+      hvi::driver::load_study(data + "drift_study.toml", {"grid.cell_size=1 mm"});
   ASSERT_EQ(s.runs.size(), 5u);
   EXPECT_EQ(s.runs[0].name, "v100_r1");  // the first axis varies slowest
   EXPECT_EQ(s.runs[1].name, "v100_r15");
@@ -78,8 +80,8 @@ TEST(Sweep, TheCommandLineOverridesARunsOwnSetButMayNotFixAnAxis) {
   // A [[run]]'s own value gives way to the command line's: the paper's study, whose runs each set
   // their model area, cut to a quarter model.
   const std::string quarter = R"(grid.lower=["0 mm", "0 mm", "-25 mm"])";
-  const hvi::driver::Study s =
-      hvi::driver::load_study(std::string(HVI_SOURCE_DIR) + "/cases/paper/study/study.toml", {quarter});
+  const hvi::driver::Study s = hvi::driver::load_study(
+      std::string(HVI_SOURCE_DIR) + "/cases/paper/study/study.toml", {quarter});
   ASSERT_EQ(s.runs.size(), 25u);
   for (const auto& run : s.runs) {
     ASSERT_FALSE(run.overrides.empty());
@@ -104,7 +106,9 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep.log";
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --threads 2", log), 0) << read(log);
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --threads 2", log),
+            0)
+      << read(log);
   auto rows = table(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 5u);
   EXPECT_EQ(rows["v200_r15"]["speed"], "v200");
@@ -133,7 +137,10 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   // A later end time in the study: every run is run on from its checkpoint (the sphere drifts
   // 0.1 mm more per 100 m/s), and the table is rebuilt.
   const double first_wall = std::stod(rows["v200_r15"]["wall_seconds"]);
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us", log), 0)
+  ASSERT_EQ(
+      run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us",
+          log),
+      0)
       << read(log);
   EXPECT_NE(read(log).find("v200_r15: running on to 3 us"), std::string::npos) << read(log);
   // The run's log names it, and keeps the first part above the second.
@@ -147,13 +154,16 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   const toml::table summary = toml::parse_file((out / "v200_r15" / "summary.toml").string());
   const double run_on_wall = summary["wall_seconds"].value_or(0.0);
   EXPECT_GT(run_on_wall, 0.0);
-  EXPECT_NEAR(std::stod(rows["v200_r15"]["wall_seconds"]), first_wall + run_on_wall, 1e-9 * (first_wall + run_on_wall));
+  EXPECT_NEAR(std::stod(rows["v200_r15"]["wall_seconds"]), first_wall + run_on_wall,
+              1e-9 * (first_wall + run_on_wall));
   EXPECT_NEAR(front("v100_r1") - front("still"), 0.3e-3, 1e-12);
-  const hvi::scene::Scene extended = hvi::scene::load_scene((out / "v100_r1" / "scene.resolved.toml").string());
+  const hvi::scene::Scene extended =
+      hvi::scene::load_scene((out / "v100_r1" / "scene.resolved.toml").string());
   EXPECT_EQ(extended.end_time, 3e-6);
 
   // Another output cadence is not another run.
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us --set output.interval=0.5us",
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
+                    " --set run.end_time=3us --set output.interval=0.5us",
                 log),
             0)
       << read(log);
@@ -163,34 +173,44 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   // Nor is another list of measures: a done run keeps those it was run with, its row unchanged,
   // and the console says so.
   const std::string measured = read(out / "sweep.csv");
-  const std::string other_measure = R"( --set 'measure=[{name="back",kind="extent_min",axis="x"}]')";
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us" + other_measure, log),
+  const std::string other_measure =
+      R"( --set 'measure=[{name="back",kind="extent_min",axis="x"}]')";
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
+                    " --set run.end_time=3us" + other_measure,
+                log),
             0)
       << read(log);
   const std::string said = read(log);
   const auto done = said.find("v200_r15: done");
   ASSERT_NE(done, std::string::npos) << said;
-  EXPECT_EQ(said.find("    it keeps the [[measure]] it was started with (the study's differ)\n", done),
-            said.find('\n', done) + 1)
+  EXPECT_EQ(
+      said.find("    it keeps the [[measure]] it was started with (the study's differ)\n", done),
+      said.find('\n', done) + 1)
       << said;
   EXPECT_EQ(read(out / "sweep.csv"), measured);
 
   // An earlier end time, or any other key changed, is refused before anything runs.
   const std::string after = read(out / "sweep.csv");
   EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string(), log), 2);
-  EXPECT_NE(read(log).find("ran to 3 us but the study now ends at 2 us"), std::string::npos) << read(log);
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us --set grid.cfl=0.3",
+  EXPECT_NE(read(log).find("ran to 3 us but the study now ends at 2 us"), std::string::npos)
+      << read(log);
+  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
+                    " --set run.end_time=3us --set grid.cfl=0.3",
                 log),
             2);
   EXPECT_NE(read(log).find("key 'grid.cfl' differs"), std::string::npos) << read(log);
   EXPECT_EQ(read(out / "sweep.csv"), after);
 
   // Run on with other measures, a run keeps its own: the sphere's front, 0.4 mm ahead per 100 m/s.
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=4us" + other_measure, log),
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
+                    " --set run.end_time=4us" + other_measure,
+                log),
             0)
       << read(log);
-  EXPECT_NE(read(log).find("v200_r15: running on to 4 us...\n    it keeps the [[measure]] it was started with"),
-            std::string::npos)
+  EXPECT_NE(
+      read(log).find(
+          "v200_r15: running on to 4 us...\n    it keeps the [[measure]] it was started with"),
+      std::string::npos)
       << read(log);
   rows = table(out / "sweep.csv");
   EXPECT_NEAR(front("v200_r1") - front("v100_r1"), 0.4e-3, 1e-12);
@@ -203,27 +223,36 @@ TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep_only";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_only.log";
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only still", log), 0) << read(log);
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1", log), 0) << read(log);
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only still", log),
+            0)
+      << read(log);
+  ASSERT_EQ(
+      run("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1", log), 0)
+      << read(log);
   const auto rows = table(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 2u) << read(out / "sweep.csv");
   EXPECT_EQ(rows.at("still").at("status"), "finished");
   EXPECT_EQ(rows.at("v100_r1").at("status"), "finished");
   EXPECT_EQ(rows.at("v100_r1").at("speed"), "v100");
   // The same drift as in the full sweep: 100 m/s x 2 us.
-  EXPECT_NEAR(std::stod(rows.at("v100_r1").at("front")) - std::stod(rows.at("still").at("front")), 0.2e-3, 1e-12);
+  EXPECT_NEAR(std::stod(rows.at("v100_r1").at("front")) - std::stod(rows.at("still").at("front")),
+              0.2e-3, 1e-12);
   const std::string csv = read(out / "sweep.csv");
   EXPECT_LT(csv.find("\nv100_r1,"), csv.find("\nstill,"));  // the study's order
 
   // A run continued by hand to a later end: the same sweep, its end time set to the run's, counts
   // it done and tables its new state (100 m/s x 3 us), not the row of its first sitting.
-  ASSERT_EQ(run("run --resume " + (out / "v100_r1").string() + " --set run.end_time=3us", log), 0) << read(log);
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1 --set run.end_time=3us", log),
+  ASSERT_EQ(run("run --resume " + (out / "v100_r1").string() + " --set run.end_time=3us", log), 0)
+      << read(log);
+  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
+                    " --only v100_r1 --set run.end_time=3us",
+                log),
             0)
       << read(log);
   EXPECT_NE(read(log).find("v100_r1: done"), std::string::npos) << read(log);
   const auto later = table(out / "sweep.csv");
-  EXPECT_NEAR(std::stod(later.at("v100_r1").at("front")) - std::stod(later.at("still").at("front")), 0.3e-3, 1e-12);
+  EXPECT_NEAR(std::stod(later.at("v100_r1").at("front")) - std::stod(later.at("still").at("front")),
+              0.3e-3, 1e-12);
 }
 
 // A run that does not finish is reported on the sweep's console with the run's own account of
@@ -235,29 +264,40 @@ TEST(Sweep, TheConsoleSaysWhyARunStoppedOrFailed) {
   const fs::path log = dir / "console.txt";
 
   // Stopped by run.max_steps, at 2 km/s, 43% of the steel's bulk sound speed: the EOS warning.
-  std::ofstream(dir / "stopped.toml") << "scene = \"" << data << "drift.toml\"\n"
-                                      << "[[run]]\nname = \"still\"\n"
-                                      << "set = [\"body.ball.velocity=[2000, 0, 0]\", \"run.max_steps=3\"]\n";
-  ASSERT_EQ(run("sweep " + (dir / "stopped.toml").string() + " --out " + (dir / "stopped").string(), log), 3)
+  std::ofstream(dir / "stopped.toml")
+      << "scene = \"" << data << "drift.toml\"\n"
+      << "[[run]]\nname = \"still\"\n"
+      << "set = [\"body.ball.velocity=[2000, 0, 0]\", \"run.max_steps=3\"]\n";
+  ASSERT_EQ(
+      run("sweep " + (dir / "stopped.toml").string() + " --out " + (dir / "stopped").string(), log),
+      3)
       << read(log);
   std::string console = read(log);
-  for (const char* part : {"    stopped after ", "(exit 0); see ", "      hvi: stopped (run.max_steps) at t = ",
-                           ", step 3: 3 steps in ", "      warning: material 'steel' names no equation of state"})
+  for (const char* part : {"    stopped after ", "(exit 0); see ",
+                           "      hvi: stopped (run.max_steps) at t = ", ", step 3: 3 steps in ",
+                           "      warning: material 'steel' names no equation of state"})
     EXPECT_NE(console.find(part), std::string::npos) << part << " in:\n" << console;
-  EXPECT_EQ(console.find("hvi: " + data + "drift.toml"), std::string::npos) << console;  // not the banner
+  EXPECT_EQ(console.find("hvi: " + data + "drift.toml"), std::string::npos)
+      << console;  // not the banner
   EXPECT_EQ(table(dir / "stopped" / "sweep.csv").at("still").at("status"), "stopped");
 
   // Failed: two spheres colliding on linear shape functions with USL (see test_cli).
-  std::ofstream(dir / "failed.toml") << "scene = \"" << data << "small_spheres.toml\"\n"
-                                     << "[[run]]\nname = \"unstable\"\n"
-                                     << "set = [\"grid.shape_function=linear\", \"grid.scheme=usl\"]\n";
-  ASSERT_EQ(run("sweep " + (dir / "failed.toml").string() + " --out " + (dir / "failed").string(), log), 3) << read(log);
+  std::ofstream(dir / "failed.toml")
+      << "scene = \"" << data << "small_spheres.toml\"\n"
+      << "[[run]]\nname = \"unstable\"\n"
+      << "set = [\"grid.shape_function=linear\", \"grid.scheme=usl\"]\n";
+  ASSERT_EQ(
+      run("sweep " + (dir / "failed.toml").string() + " --out " + (dir / "failed").string(), log),
+      3)
+      << read(log);
   console = read(log);
-  for (const char* part : {"    failed after ", "(exit 3); see ", "      hvi: the run failed: step ", "non-positive volume",
-                           "checkpoint.h5 (step 0) the last state before it"})
+  for (const char* part :
+       {"    failed after ", "(exit 3); see ", "      hvi: the run failed: step ",
+        "non-positive volume", "checkpoint.h5 (step 0) the last state before it"})
     EXPECT_NE(console.find(part), std::string::npos) << part << " in:\n" << console;
   // The spheres meet at 600 m/s, 13% of that sound speed: the warning comes after the failure.
-  const auto warning = console.find("      warning: material 'steel' names no equation of state, but the impact speed 600.1 m/s");
+  const auto warning = console.find(
+      "      warning: material 'steel' names no equation of state, but the impact speed 600.1 m/s");
   ASSERT_NE(warning, std::string::npos) << console;
   EXPECT_GT(warning, console.find("the last state before it")) << console;
   EXPECT_EQ(table(dir / "failed" / "sweep.csv").at("unstable").at("status"), "failed");
@@ -299,16 +339,17 @@ TEST(Sweep, ShippedPaperStudiesResolve) {
   const std::string cases = std::string(HVI_SOURCE_DIR) + "/cases/paper/";
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep_list";
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_list.log";
-  for (const std::string study : {"validation/printed.toml", "validation/foil.toml", "study/study.toml",
-                                  "structure/structure.toml"})
+  for (const std::string study : {"validation/printed.toml", "validation/foil.toml",
+                                  "study/study.toml", "structure/structure.toml"})
     for (const std::string resolution : {"coarse", "paper"})
-      EXPECT_EQ(run("sweep " + cases + study + " --out " + out.string() + " --list --set resolution=" +
-                        resolution,
+      EXPECT_EQ(run("sweep " + cases + study + " --out " + out.string() +
+                        " --list --set resolution=" + resolution,
                     log),
                 0)
           << study << " " << resolution << ": " << read(log);
   for (const std::string study : {"study/front_hole_knobs.toml", "study/front_hole_fine.toml"})
-    EXPECT_EQ(run("sweep " + cases + study + " --out " + out.string() + " --list", log), 0) << study << ": " << read(log);
+    EXPECT_EQ(run("sweep " + cases + study + " --out " + out.string() + " --list", log), 0)
+        << study << ": " << read(log);
   EXPECT_FALSE(fs::exists(out));  // listing writes nothing
 }
 

@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
+#include "geometry/honeycomb.hpp"
 #include "run/bodies.hpp"
 #include "run/build_solver.hpp"
 #include "run/hybrid.hpp"
 #include "scene/scene.hpp"
-#include "geometry/honeycomb.hpp"
 
 namespace hvi {
 namespace {
@@ -28,19 +28,25 @@ const std::vector<std::string> growing = {"grid.upper=[\"7 mm\", \"7 mm\", \"3 m
                                           "material.aluminium.damage=johnson-cook"};
 
 struct GrowingHybrid {
-  scene::Scene scene = scene::load_scene(std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml", growing);
+  scene::Scene scene = scene::load_scene(
+      std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml", growing);
   std::unique_ptr<mpm::Solver> solver = driver::make_solver(scene);
   driver::Hybrid hybrid{scene, *solver};
 };
 
 // The body's points over the in-plane box, one piece.
-geometry::PointSet one_piece(const scene::Scene& s, std::size_t body, const std::array<double, 4>& box) {
+geometry::PointSet one_piece(const scene::Scene& s, std::size_t body,
+                             const std::array<double, 4>& box) {
   const auto& clip = *s.bodies[body].clip;
-  return driver::sample_body(s, body, *driver::make_body_solid(s, body, {{box[0], box[1], clip.lower[2]},
-                                                                        {box[2], box[3], clip.upper[2]}}));
+  return driver::sample_body(
+      s, body,
+      *driver::make_body_solid(s, body,
+                               {{box[0], box[1], clip.lower[2]}, {box[2], box[3], clip.upper[2]}}));
 }
 
-double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+double sum(const std::vector<double>& v) {
+  return std::accumulate(v.begin(), v.end(), 0.0);
+}
 
 const std::array<double, 4> zone{0.0, 0.0, 3e-3, 3e-3}, grown{0.0, 0.0, 5e-3, 4e-3};
 
@@ -63,10 +69,12 @@ TEST(ZoneGrowthSampling, TheRingHoldsTheVolumeTheZoneGains) {
         ++count;
         const double x = part.position[3 * k], y = part.position[3 * k + 1];
         EXPECT_TRUE(x >= grown[0] && x <= grown[2] && y >= grown[1] && y <= grown[3]);
-        EXPECT_FALSE(x < zone[2] && y < zone[3]) << "a ring point inside the zone at " << x << ", " << y;
+        EXPECT_FALSE(x < zone[2] && y < zone[3])
+            << "a ring point inside the zone at " << x << ", " << y;
         EXPECT_EQ(part.material[k], static_cast<std::int64_t>(s.scene.bodies[b].material));
       }
-    const double gained = sum(one_piece(s.scene, b, grown).volume) - sum(one_piece(s.scene, b, zone).volume);
+    const double gained =
+        sum(one_piece(s.scene, b, grown).volume) - sum(one_piece(s.scene, b, zone).volume);
     EXPECT_GT(count, 0u);
     EXPECT_NEAR(ring_volume / gained, 1.0, 1e-12) << s.scene.bodies[b].name;
   }
@@ -83,11 +91,13 @@ TEST(ZoneGrowthSampling, FacesheetPointsAreTheGrownZonesOutsideTheZone) {
     const auto part = s.hybrid.sample_ring(coupling::ring(zone, grown), *s.solver);
     for (std::size_t k = 0; k < part.size(); ++k)
       if (part.body[k] == static_cast<std::int64_t>(b))
-        ring_points.push_back({part.position[3 * k], part.position[3 * k + 1], part.position[3 * k + 2], part.volume[k]});
+        ring_points.push_back({part.position[3 * k], part.position[3 * k + 1],
+                               part.position[3 * k + 2], part.volume[k]});
     const auto whole = one_piece(s.scene, b, grown);
     for (std::size_t k = 0; k < whole.size(); ++k)
       if (!(whole.position[3 * k] < zone[2] && whole.position[3 * k + 1] < zone[3]))
-        expected.push_back({whole.position[3 * k], whole.position[3 * k + 1], whole.position[3 * k + 2], whole.volume[k]});
+        expected.push_back({whole.position[3 * k], whole.position[3 * k + 1],
+                            whole.position[3 * k + 2], whole.volume[k]});
     std::sort(ring_points.begin(), ring_points.end());
     std::sort(expected.begin(), expected.end());
     ASSERT_EQ(ring_points.size(), expected.size()) << s.scene.bodies[b].name;
@@ -128,7 +138,8 @@ TEST(ZoneGrowthSampling, CorePointsTakeTheirWallsDirection) {
         along[w.family] = {dx / std::sqrt(L2), dy / std::sqrt(L2)};
       }
     }
-    const auto f = static_cast<std::size_t>(std::min_element(nearest.begin(), nearest.end()) - nearest.begin());
+    const auto f = static_cast<std::size_t>(std::min_element(nearest.begin(), nearest.end()) -
+                                            nearest.begin());
     bool clear = true;
     for (std::size_t g = 0; g < 3; ++g) clear = clear && (g == f || nearest[g] > nearest[f] + 1e-6);
     if (!clear) continue;

@@ -38,14 +38,16 @@ inline LayeredMesh block(int degree, bool plastic, bool finite_strain = false) {
   m.lower = {0, 0};
   m.x_steps = {0.5 * L, 0.5 * L};
   m.y_steps = {0.5 * L, 0.5 * L};
-  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho, plastic ? std::optional(al6061()) : std::nullopt, std::nullopt, std::nullopt}};
+  m.layers = {{"face", 0, L, 2, isotropic(E, nu), rho,
+               plastic ? std::optional(al6061()) : std::nullopt, std::nullopt, std::nullopt}};
   m.degree = degree;
   m.finite_strain = finite_strain;
   return m;
 }
 
 // u = A X + c at every node (A = F - I of a homogeneous deformation).
-inline void deform(FarField& f, const std::array<std::array<double, 3>, 3>& A, const std::array<double, 3>& c = {}) {
+inline void deform(FarField& f, const std::array<std::array<double, 3>, 3>& A,
+                   const std::array<double, 3>& c = {}) {
   auto u = f.displacement();
   const auto x = f.reference_positions();
   for (std::size_t a = 0; a < f.node_count(); ++a)
@@ -67,7 +69,8 @@ inline void throw_block(FarField& f, double vx, double vz) {
 // The internal force summed over the nodes of the reference face X_axis = L: for a homogeneous
 // first Piola-Kirchhoff stress P it is -P N L^2 with N the face's normal, so column `axis` of P
 // is -sum / L^2.
-inline std::array<double, 3> face_force(const std::vector<double>& force, const FarField& f, int axis) {
+inline std::array<double, 3> face_force(const std::vector<double>& force, const FarField& f,
+                                        int axis) {
   const auto x = f.reference_positions();
   std::array<double, 3> sum{};
   for (std::size_t a = 0; a < f.node_count(); ++a)

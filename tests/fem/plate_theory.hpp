@@ -43,7 +43,8 @@ inline PlateStiffness sandwich(double Ef, double nuf, double rhof, double t, dou
 // A homogeneous plate (Mindlin, shear correction 5/6).
 inline PlateStiffness homogeneous(double E, double nu, double rho, double h) {
   const double G = E / (2 * (1 + nu));
-  return {E * h * h * h / (12 * (1 - nu * nu)), 0.0, 5.0 / 6.0 * G * h, rho * h, rho * h * h * h / 12};
+  return {E * h * h * h / (12 * (1 - nu * nu)), 0.0, 5.0 / 6.0 * G * h, rho * h,
+          rho * h * h * h / 12};
 }
 
 }  // namespace hvi::fem::test

@@ -11,9 +11,9 @@
 #include <cmath>
 #include <vector>
 
+#include "block.hpp"
 #include "fem/core_yield.hpp"
 #include "fem/far_field.hpp"
-#include "block.hpp"
 
 namespace hvi::fem {
 namespace {
@@ -33,10 +33,12 @@ TEST(CoreYield, CapsAreTheWallsYieldThroughTheModuli) {
   EXPECT_NEAR(single.shear_xz, sigma_ys / std::sqrt(3.0) * t / D, 1e-12 * single.shear_xz);
   EXPECT_NEAR(single.shear_yz, single.shear_xz, 1e-12 * single.shear_xz);
   // Double walls: along the ribbon (yz) 19/12 of the single-wall value, as G23.
-  const CoreYield doubled = honeycomb_core_yield(honeycomb_core(Es, nus, D, t, true), Es, nus, sigma_ys);
+  const CoreYield doubled =
+      honeycomb_core_yield(honeycomb_core(Es, nus, D, t, true), Es, nus, sigma_ys);
   EXPECT_NEAR(doubled.shear_yz, 19.0 / 12.0 * single.shear_xz, 1e-12 * single.shear_xz);
   EXPECT_NEAR(doubled.shear_xz, single.shear_xz, 1e-12 * single.shear_xz);
-  EXPECT_NEAR(doubled.normal, sigma_ys * honeycomb_core_solidity(D, t, true), 1e-12 * doubled.normal);
+  EXPECT_NEAR(doubled.normal, sigma_ys * honeycomb_core_solidity(D, t, true),
+              1e-12 * doubled.normal);
 }
 
 // Table 4's Al5052 damage: D1 = D2 = 0.13, D3 = -1.50.
@@ -60,7 +62,8 @@ LayeredMesh core_block(int degree, bool yielding, bool failing = false) {
   m.y_steps = {0.5 * L, 0.5 * L};
   std::optional<CoreYield> caps;
   if (yielding) caps = failing ? failing_caps(core) : honeycomb_core_yield(core, Es, nus, sigma_ys);
-  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt, caps, std::nullopt}};
+  m.layers = {{"core", 0, L, 2, core, rhos * honeycomb_core_solidity(D, t), std::nullopt, caps,
+               std::nullopt}};
   m.degree = degree;
   return m;
 }
@@ -121,7 +124,8 @@ TEST(CoreYield, TransverseShearCapsAtTheWallsShearYield) {
     const auto sz = traction(f, 2);
     const double expected = std::min(core.G13 * g, caps.shear_xz);
     EXPECT_NEAR(sz[0], expected, 1e-9 * caps.shear_xz) << "gamma " << g;
-    EXPECT_NEAR(sz[1], std::min(core.G23 * g, caps.shear_yz), 1e-9 * caps.shear_yz) << "gamma " << g;
+    EXPECT_NEAR(sz[1], std::min(core.G23 * g, caps.shear_yz), 1e-9 * caps.shear_yz)
+        << "gamma " << g;
     EXPECT_NEAR(sz[2], 0.0, 1e-9 * caps.shear_xz);
   }
   // gamma_p = 2 gamma_y in each of the two shears; work Y (2 gamma_y) V each.
@@ -163,16 +167,20 @@ TEST(CoreFailure, UniaxialStrainTearsAtTheWallsTensileFailureStrain) {
       const double szz = e <= ey ? C[2] * e : k < kf ? caps.normal : 0.0;
       const auto sz = traction(f, 2), sx = traction(f, 0);
       EXPECT_NEAR(sz[2], szz, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
-      EXPECT_NEAR(sx[0], C[4] / C[2] * szz, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
+      EXPECT_NEAR(sx[0], C[4] / C[2] * szz, 1e-9 * caps.normal)
+          << "degree " << degree << ", step " << k;
       if (k == kf) {
         work_at_tear = f.plastic_work();
-        EXPECT_NEAR(f.plastic_work(), caps.normal * (e - 0.5 * ey) * V, 1e-9 * caps.normal * ef * V);
+        EXPECT_NEAR(f.plastic_work(), caps.normal * (e - 0.5 * ey) * V,
+                    1e-9 * caps.normal * ef * V);
         EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.normal * ef * V);
         EXPECT_NEAR(f.core_failed_volume(), V, 1e-12 * V);
         // Every cell of the 2 x 2 x 2 block is torn: its in-plane centres, at L/4 and 3L/4.
         const std::vector<double> centres = f.damaged_cell_centres(1.0);
         ASSERT_EQ(centres.size(), 16u);
-        for (const double c : centres) EXPECT_TRUE(std::abs(c - 0.25 * L) < 1e-12 * L || std::abs(c - 0.75 * L) < 1e-12 * L) << c;
+        for (const double c : centres)
+          EXPECT_TRUE(std::abs(c - 0.25 * L) < 1e-12 * L || std::abs(c - 0.75 * L) < 1e-12 * L)
+              << c;
       }
       if (k < kf) {
         EXPECT_EQ(f.core_failed_volume(), 0.0) << "step " << k;
@@ -183,12 +191,14 @@ TEST(CoreFailure, UniaxialStrainTearsAtTheWallsTensileFailureStrain) {
       test::deform(f, {{{0, 0, 0}, {0, 0, 0}, {0, 0, k * de}}});
       const auto sz = traction(f, 2);
       EXPECT_NEAR(sz[2], 0.0, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
-      EXPECT_NEAR(traction(f, 0)[0], 0.0, 1e-9 * caps.normal) << "degree " << degree << ", step " << k;
+      EXPECT_NEAR(traction(f, 0)[0], 0.0, 1e-9 * caps.normal)
+          << "degree " << degree << ", step " << k;
     }
     EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.normal * ef * V);
     // Torn walls take no more work: the point exerts no force, whatever the strain does.
     EXPECT_EQ(f.plastic_work(), work_at_tear);
-    // The accumulated strain is the walls' plastic strain to the tear, not what the torn core took after.
+    // The accumulated strain is the walls' plastic strain to the tear, not what the torn core took
+    // after.
     EXPECT_NEAR(f.max_core_plastic_strain(), kf * de - ey, 1e-9 * ef);
   }
 }
@@ -199,7 +209,8 @@ TEST(CoreFailure, UniaxialStrainTearsAtTheWallsTensileFailureStrain) {
 TEST(CoreFailure, TransverseShearTearsAtTheWallsShearFailureStrain) {
   const Orthotropic core = honeycomb_core(Es, nus, D, t);
   const CoreYield caps = failing_caps(core);
-  const double gy = caps.shear_xz / core.G13, gf = std::sqrt(3.0) * caps.failure->shear, V = L * L * L;
+  const double gy = caps.shear_xz / core.G13, gf = std::sqrt(3.0) * caps.failure->shear,
+               V = L * L * L;
   const double dg = (gy + gf) / 12.5;
   const int kf = 13;
   FarField f(core_block(2, true, true));
@@ -211,7 +222,8 @@ TEST(CoreFailure, TransverseShearTearsAtTheWallsShearFailureStrain) {
     EXPECT_NEAR(sz[0], sxz, 1e-9 * caps.shear_xz) << "step " << k;
     EXPECT_NEAR(sz[1], 0.0, 1e-9 * caps.shear_xz) << "step " << k;
     if (k == kf) {
-      EXPECT_NEAR(f.plastic_work(), caps.shear_xz * (g - 0.5 * gy) * V, 1e-9 * caps.shear_xz * gf * V);
+      EXPECT_NEAR(f.plastic_work(), caps.shear_xz * (g - 0.5 * gy) * V,
+                  1e-9 * caps.shear_xz * gf * V);
       EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * caps.shear_xz * gf * V);
     }
   }
@@ -255,7 +267,8 @@ TEST(CoreFailure, EnergyIsConservedThroughTheTearInMotion) {
 // An elastic core keeps no state; a layer may not name both models.
 TEST(CoreYield, OnlyWhenNamedAndNotWithJ2) {
   EXPECT_FALSE(FarField(core_block(1, false)).plastic());
-  EXPECT_EQ(FarField(core_block(1, true)).core_failed_volume(), 0.0);  // a yielding core keeps no damage
+  EXPECT_EQ(FarField(core_block(1, true)).core_failed_volume(),
+            0.0);  // a yielding core keeps no damage
   EXPECT_TRUE(FarField(core_block(1, true)).damaged_cell_centres(0.0).empty());
   LayeredMesh both = core_block(1, true);
   both.layers[0].elasticity = isotropic(test::E, test::nu);

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <vector>
 
-#include "fem/far_field.hpp"
 #include "block.hpp"
+#include "fem/far_field.hpp"
 
 namespace hvi::fem {
 namespace {
@@ -108,7 +108,8 @@ TEST(FacesheetFailure, SimpleShearTearsAtTheFailureStrainOfZeroTriaxiality) {
       const double p = std::min(3 * K * e, 0.0);
       EXPECT_NEAR(s[0], p, 1e-9 * jc.A) << "degree " << degree << ", e " << e;
       EXPECT_NEAR(s[1], 0.0, 1e-9 * jc.A) << "degree " << degree << ", e " << e;
-      EXPECT_NEAR(f.strain_energy(), 0.5 * p * p / K * V, 1e-9 * jc.A * 1e-3 * V) << "degree " << degree << ", e " << e;
+      EXPECT_NEAR(f.strain_energy(), 0.5 * p * p / K * V, 1e-9 * jc.A * 1e-3 * V)
+          << "degree " << degree << ", e " << e;
     }
     // A torn point takes no more work, and keeps the alpha it had at the tear.
     EXPECT_EQ(f.plastic_work(), work_at_tear);
@@ -133,7 +134,8 @@ TEST(FacesheetFailure, UniaxialStrainTearsWhereTheDamageSumAtItsTriaxialityReach
   for (int k = 1; kf == 0; ++k) {
     const double e = k * de, a = exact.alpha_on_loading(e);
     double D = damage.back();
-    if (a > alpha.back()) D += (a - alpha.back()) / dmg.failure_strain(K * e / jc.hardening(a), 0.0, 0.0);
+    if (a > alpha.back())
+      D += (a - alpha.back()) / dmg.failure_strain(K * e / jc.hardening(a), 0.0, 0.0);
     alpha.push_back(a);
     damage.push_back(D);
     if (D >= 1) kf = k;
@@ -154,7 +156,8 @@ TEST(FacesheetFailure, UniaxialStrainTearsWhereTheDamageSumAtItsTriaxialityReach
     EXPECT_NEAR(f.strain_energy(), 0.0, 1e-12 * jc.A * de * V);
     for (const double e : {-1e-3, 2e-3, -2e-3}) {
       deform(f, {{{e, 0, 0}, {0, 0, 0}, {0, 0, 0}}});
-      EXPECT_NEAR(face_stress(f)[0], std::min(K * e, 0.0), 1e-9 * jc.A) << "degree " << degree << ", e " << e;
+      EXPECT_NEAR(face_stress(f)[0], std::min(K * e, 0.0), 1e-9 * jc.A)
+          << "degree " << degree << ", e " << e;
     }
   }
 }
@@ -184,7 +187,8 @@ TEST(FacesheetFailure, EnergyIsConservedThroughTheTearInMotion) {
       const double En = f.kinetic_energy(mean) + f.strain_energy() + f.plastic_work();
       worst = std::max(worst, std::abs(En / E0 - 1.0));
       if (failing && at_first_tear < 0 && f.facesheet_failed_volume() > 0) at_first_tear = En;
-      if (at_first_tear >= 0) across_tears = std::max(across_tears, std::abs(En - at_first_tear) / E0);
+      if (at_first_tear >= 0)
+        across_tears = std::max(across_tears, std::abs(En - at_first_tear) / E0);
     }
     if (!failing) worst_j2 = worst;
     if (failing) {

@@ -20,7 +20,9 @@ namespace {
 
 using std::numbers::pi;
 
-std::vector<double> uniform(double length, int n) { return std::vector<double>(n, length / n); }
+std::vector<double> uniform(double length, int n) {
+  return std::vector<double>(n, length / n);
+}
 
 // The paper's study panel materials (Table 4): Al6061 faces, Al5052 walls.
 const double E_face = 75e9, nu = 0.33, rho_face = 2770, E_wall = 73e9, rho_wall = 2680;
@@ -54,7 +56,7 @@ void support_quarter_plate(FarField& f, double half) {
 }
 
 struct Vibration {
-  double omega = 0;         // from the zero crossings of the centre deflection, rad/s
+  double omega = 0;  // from the zero crossings of the centre deflection, rad/s
   // max |E - E0| / E0 over the run, with the energy of a whole step n
   //   E^n = 1/2 v^(n-1/2) . M v^(n+1/2) + 1/2 u^n . K u^n,
   // which central differences conserve exactly for a linear system: what is left is drift from
@@ -92,7 +94,8 @@ Vibration vibrate(FarField& f, double a, double z_mid, double W, double theta, i
   auto v = f.velocity();
   // Half kick: v^(1/2) = dt/2 M^-1 f(u^0).
   f.internal_force(force);
-  for (std::size_t i = 0; i < nd; ++i) v[i] = (f.fixed(i / 3) & (1u << (i % 3))) ? 0.0 : 0.5 * dt * force[i] / m[i / 3];
+  for (std::size_t i = 0; i < nd; ++i)
+    v[i] = (f.fixed(i / 3) & (1u << (i % 3))) ? 0.0 : 0.5 * dt * force[i] / m[i / 3];
   // Starting from rest, v^(-1/2) = -v^(1/2): E^0 = 1/2 u.K u - 1/2 v^(1/2).M v^(1/2).
   const double E0 = f.strain_energy() - f.kinetic_energy(v);
   for (std::size_t i = 0; i < nd; ++i) u[i] += dt * v[i];
@@ -176,10 +179,13 @@ TEST(FarField, RigidMotionAndUniformStrainPatchTest) {
       const bool on_x_face = px < 1e-12 || px > 0.03 - 1e-12;
       // Only nodes on the faces x = 0, 0.03 carry the traction; y and z faces are free of sigma_xx
       // but the Poisson couplings give sigma_yy, sigma_zz, whose divergence is zero inside.
-      const bool on_boundary = on_x_face || x[3 * n + 1] < 1e-12 || x[3 * n + 1] > 0.03 - 1e-12 ||
-                               std::abs(x[3 * n + 2]) < 1e-12 || std::abs(x[3 * n + 2] - 8e-3) < 1e-12 ||
-                               std::abs(x[3 * n + 2] - 1e-3) < 1e-12 || std::abs(x[3 * n + 2] - 7e-3) < 1e-12;
-      for (int d = 0; d < 3; ++d) (on_boundary ? boundary : interior) = std::max(on_boundary ? boundary : interior, std::abs(force[3 * n + d]));
+      const bool on_boundary =
+          on_x_face || x[3 * n + 1] < 1e-12 || x[3 * n + 1] > 0.03 - 1e-12 ||
+          std::abs(x[3 * n + 2]) < 1e-12 || std::abs(x[3 * n + 2] - 8e-3) < 1e-12 ||
+          std::abs(x[3 * n + 2] - 1e-3) < 1e-12 || std::abs(x[3 * n + 2] - 7e-3) < 1e-12;
+      for (int d = 0; d < 3; ++d)
+        (on_boundary ? boundary : interior) =
+            std::max(on_boundary ? boundary : interior, std::abs(force[3 * n + d]));
     }
     EXPECT_GT(boundary, 1.0);
     EXPECT_LT(interior, 1e-9 * boundary) << "degree " << degree;
@@ -224,8 +230,9 @@ TEST(FarField, StableTimeStepBoundsTheAssembledSpectrum) {
 struct TestSandwich {
   double a = 0.2, t = 1e-3, c = 10e-3, D = 3e-3, t_hc = 0.05e-3;
   double k2 = 2 * pi * pi / (a * a);
-  test::PlateStiffness p = test::sandwich(E_face, nu, rho_face, t, honeycomb_core(E_wall, nu, D, t_hc).G13,
-                                          rho_wall * honeycomb_core_solidity(D, t_hc), c);
+  test::PlateStiffness p =
+      test::sandwich(E_face, nu, rho_face, t, honeycomb_core(E_wall, nu, D, t_hc).G13,
+                     rho_wall* honeycomb_core_solidity(D, t_hc), c);
   double omega2 = test::first_bending_omega2(p, k2);
 };
 
@@ -241,9 +248,10 @@ TEST(FarField, SandwichPlateFirstBendingFrequency) {
   const double W = 1e-4;
   const auto r = vibrate(f, a, t + c / 2, W, test::mode_rotation(p, k2, omega2) * W, 21);
   const double omega = std::sqrt(omega2);
-  std::printf("sandwich plate: omega %.2f rad/s (theory %.2f, %+.3f%%), %.1f periods, %ld steps, "
-              "energy error %.2e\n",
-              r.omega, omega, 100 * (r.omega / omega - 1), r.periods, r.steps, r.energy_error);
+  std::printf(
+      "sandwich plate: omega %.2f rad/s (theory %.2f, %+.3f%%), %.1f periods, %ld steps, "
+      "energy error %.2e\n",
+      r.omega, omega, 100 * (r.omega / omega - 1), r.periods, r.steps, r.energy_error);
   EXPECT_NEAR(r.omega / omega, 1.0, 0.02);
   EXPECT_GE(r.periods, 10.0 - 1e-9);
   EXPECT_LT(r.energy_error, 1e-3);
@@ -265,12 +273,12 @@ TEST(FarField, SandwichPlateInQ1) {
     support_quarter_plate(f, a / 2);
     const double W = 1e-4;
     const auto r = vibrate(f, a, t + c / 2, W, test::mode_rotation(p, k2, omega2) * W, 3);
-    std::printf("sandwich plate Q1 %d elements: omega %.2f rad/s (theory %.2f, %+.3f%%)\n", n, r.omega,
-                std::sqrt(omega2), 100 * (r.omega / std::sqrt(omega2) - 1));
+    std::printf("sandwich plate Q1 %d elements: omega %.2f rad/s (theory %.2f, %+.3f%%)\n", n,
+                r.omega, std::sqrt(omega2), 100 * (r.omega / std::sqrt(omega2) - 1));
     error[n / 16] = r.omega / std::sqrt(omega2) - 1;
   }
-  EXPECT_GT(error[0], 0.02);             // 12.5 t_f: locking shows
-  EXPECT_LT(std::abs(error[1]), 0.02);   // 6.25 t_f: within the 2%
+  EXPECT_GT(error[0], 0.02);            // 12.5 t_f: locking shows
+  EXPECT_LT(std::abs(error[1]), 0.02);  // 6.25 t_f: within the 2%
 }
 
 // A thin homogeneous plate (200 mm, 2 mm thick, a/h = 100) one element through its thickness:

@@ -51,8 +51,10 @@ Matrix rotation(std::array<double, 3> n, double angle) {
 // layer are checked.
 LayeredMesh two_layers(int degree, bool finite_strain) {
   LayeredMesh m = block(degree, false, finite_strain);
-  m.layers = {{"core", 0, 0.5 * L, 1, honeycomb_core(E, nu, 3e-3, 0.05e-3), rho * 0.034, std::nullopt, std::nullopt, std::nullopt},
-              {"face", 0.5 * L, L, 1, isotropic(E, nu), rho, std::nullopt, std::nullopt, std::nullopt}};
+  m.layers = {
+      {"core", 0, 0.5 * L, 1, honeycomb_core(E, nu, 3e-3, 0.05e-3), rho * 0.034, std::nullopt,
+       std::nullopt, std::nullopt},
+      {"face", 0.5 * L, L, 1, isotropic(E, nu), rho, std::nullopt, std::nullopt, std::nullopt}};
   return m;
 }
 
@@ -101,12 +103,15 @@ TEST(FiniteStrain, UniaxialStretchFollowsSaintVenantKirchhoff) {
         deform(f, minus_identity(product(R, Matrix{{{lambda, 0, 0}, {0, 1, 0}, {0, 0, 1}}})));
         std::vector<double> force(3 * f.node_count());
         f.internal_force(force);
-        const double Exx = 0.5 * (lambda * lambda - 1), Sxx = (lame + 2 * mu) * Exx, Syy = lame * Exx;
+        const double Exx = 0.5 * (lambda * lambda - 1), Sxx = (lame + 2 * mu) * Exx,
+                     Syy = lame * Exx;
         const auto fx = face_force(force, f, 0), fy = face_force(force, f, 1);
         const double tol = 1e-10 * std::abs(Sxx);
         for (int i = 0; i < 3; ++i) {
-          EXPECT_NEAR(-fx[i] / (L * L), R[i][0] * lambda * Sxx, tol) << degree << " " << lambda << " " << turn;
-          EXPECT_NEAR(-fy[i] / (L * L), R[i][1] * Syy, tol) << degree << " " << lambda << " " << turn;
+          EXPECT_NEAR(-fx[i] / (L * L), R[i][0] * lambda * Sxx, tol)
+              << degree << " " << lambda << " " << turn;
+          EXPECT_NEAR(-fy[i] / (L * L), R[i][1] * Syy, tol)
+              << degree << " " << lambda << " " << turn;
         }
         const double W = 0.5 * (lame + 2 * mu) * Exx * Exx * L * L * L;
         EXPECT_NEAR(f.strain_energy(), W, 1e-12 * W);
@@ -144,22 +149,24 @@ TEST(FiniteStrain, StableStepBoundsTheTangentSpectrum) {
       Eigen::VectorXd s(nd);
       for (std::size_t i = 0; i < nd; ++i) s[i] = 1.0 / std::sqrt(f.lumped_mass()[i / 3]);
       const Eigen::MatrixXd A = s.asDiagonal() * (0.5 * (K + K.transpose())) * s.asDiagonal();
-      const double lambda_t = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
-                                  .eigenvalues()
-                                  .maxCoeff();
+      const double lambda_t =
+          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
+              .eigenvalues()
+              .maxCoeff();
       const double dt_t = 2.0 / std::sqrt(lambda_t);
-      EXPECT_LE(f.stable_time_step(), dt_t * (1 + 1e-6)) << "degree " << degree << ", F_xx " << F[0][0];
+      EXPECT_LE(f.stable_time_step(), dt_t * (1 + 1e-6))
+          << "degree " << degree << ", F_xx " << F[0][0];
       EXPECT_GT(f.stable_time_step(), 0.5 * dt_t) << "degree " << degree << ", F_xx " << F[0][0];
     }
 }
 
 // A free block spun about z at omega = 1e5 rad/s (its corners at 100 m/s) through a quarter turn
 // by central differences at 0.9 of the reported stable step: with finite strain the kinetic plus
-// strain energy stays within 1e-3 of the start's 1/2 I omega^2 (the leapfrog's energy error is of order
-// (omega_max dt)^2 in the fast modes the start excites, and the centrifugal stretch
-// rho omega^2 L^2 / E = 4e-7 stores nothing measurable), and the block has turned: a corner lies
-// within 1% of L of the rigidly rotated one. With small strain the same start is resisted by a
-// spurious strain of order one and the block does not turn.
+// strain energy stays within 1e-3 of the start's 1/2 I omega^2 (the leapfrog's energy error is of
+// order (omega_max dt)^2 in the fast modes the start excites, and the centrifugal stretch rho
+// omega^2 L^2 / E = 4e-7 stores nothing measurable), and the block has turned: a corner lies within
+// 1% of L of the rigidly rotated one. With small strain the same start is resisted by a spurious
+// strain of order one and the block does not turn.
 TEST(FiniteStrain, SpinningBlockKeepsItsEnergy) {
   const double omega = 1e5, xc = 0.5 * L, yc = 0.5 * L;
   for (const bool finite : {true, false}) {

@@ -8,9 +8,9 @@
 #include <numbers>
 #include <vector>
 
+#include "block.hpp"
 #include "fem/far_field.hpp"
 #include "fem/j2_plasticity.hpp"
-#include "block.hpp"
 
 namespace hvi::fem {
 namespace {
@@ -49,8 +49,10 @@ TEST(J2Plasticity, UniaxialStrainLoadAndUnloadFollowTheClosedForm) {
       set_strain(e);
       const auto [sxx, syy] = stresses(f);
       const double alpha = exact.alpha_on_loading(e);
-      EXPECT_NEAR(sxx, exact.sxx(e, alpha), 1e-9 * exact.sxx(e, alpha)) << "degree " << degree << ", e " << e;
-      EXPECT_NEAR(syy, exact.syy(e, alpha), 1e-9 * exact.sxx(e, alpha)) << "degree " << degree << ", e " << e;
+      EXPECT_NEAR(sxx, exact.sxx(e, alpha), 1e-9 * exact.sxx(e, alpha))
+          << "degree " << degree << ", e " << e;
+      EXPECT_NEAR(syy, exact.syy(e, alpha), 1e-9 * exact.sxx(e, alpha))
+          << "degree " << degree << ", e " << e;
       max_step = std::max(max_step, alpha - alpha_prev);
       alpha_prev = alpha;
     }
@@ -74,7 +76,8 @@ TEST(J2Plasticity, UniaxialStrainLoadAndUnloadFollowTheClosedForm) {
       EXPECT_NEAR(syy, exact.syy(e, alpha_prev), 1e-9 * std::abs(exact.sxx(e_max, alpha_prev)));
     }
     EXPECT_NEAR(f.max_equivalent_plastic_strain(), alpha_prev, 1e-12);
-    EXPECT_NEAR(f.strain_energy(), 1.5 * mu * alpha_prev * alpha_prev * V, 1e-9 * 1.5 * mu * alpha_prev * alpha_prev * V);
+    EXPECT_NEAR(f.strain_energy(), 1.5 * mu * alpha_prev * alpha_prev * V,
+                1e-9 * 1.5 * mu * alpha_prev * alpha_prev * V);
   }
 }
 
@@ -92,7 +95,8 @@ TEST(J2Plasticity, TheYieldStressTakesTheRateFactorOfTheStrainRate) {
   const int n = 100;
   const double e_max = 0.01;
   for (const int degree : {1, 2})
-    for (const double edot : {1e4, 0.5, 0.0}) {  // 0.5 /s: epsdot_eq = 1/3 /s, below epsdot_0; 0: static
+    for (const double edot :
+         {1e4, 0.5, 0.0}) {  // 0.5 /s: epsdot_eq = 1/3 /s, below epsdot_0; 0: static
       LayeredMesh m = block(degree, true);
       m.layers[0].plasticity = jc;
       m.layers[0].strain_rate = true;
@@ -113,16 +117,20 @@ TEST(J2Plasticity, TheYieldStressTakesTheRateFactorOfTheStrainRate) {
         deform(f, {{{e, 0, 0}, {0, 0, 0}, {0, 0, 0}}});
         f.internal_force(force, dt);
         alpha = exact.alpha_on_loading(e);
-        const double sxx = -face_force(force, f, 0)[0] / (L * L), syy = -face_force(force, f, 1)[1] / (L * L);
-        EXPECT_NEAR(sxx, exact.sxx(e, alpha), 1e-9 * exact.sxx(e, alpha)) << "degree " << degree << ", edot " << edot;
-        EXPECT_NEAR(syy, exact.syy(e, alpha), 1e-9 * exact.sxx(e, alpha)) << "degree " << degree << ", edot " << edot;
+        const double sxx = -face_force(force, f, 0)[0] / (L * L),
+                     syy = -face_force(force, f, 1)[1] / (L * L);
+        EXPECT_NEAR(sxx, exact.sxx(e, alpha), 1e-9 * exact.sxx(e, alpha))
+            << "degree " << degree << ", edot " << edot;
+        EXPECT_NEAR(syy, exact.syy(e, alpha), 1e-9 * exact.sxx(e, alpha))
+            << "degree " << degree << ", edot " << edot;
       }
       EXPECT_GT(alpha, 1e-3);
       EXPECT_NEAR(f.max_equivalent_plastic_strain(), alpha, 1e-12);
       if (edot == 1e4) {  // the deviator at 1% is the yield stress, 13% above the reference rate's
         const Uniaxial reference{mu, K, jc};
         const double a_ref = reference.alpha_on_loading(e_max);
-        EXPECT_NEAR(2 * mu * (e_max - 1.5 * alpha) / (2 * mu * (e_max - 1.5 * a_ref)), k * jc.hardening(alpha) / jc.hardening(a_ref), 1e-9);
+        EXPECT_NEAR(2 * mu * (e_max - 1.5 * alpha) / (2 * mu * (e_max - 1.5 * a_ref)),
+                    k * jc.hardening(alpha) / jc.hardening(a_ref), 1e-9);
         EXPECT_LT(alpha, a_ref);
       }
     }
@@ -142,11 +150,13 @@ TEST(J2Plasticity, FailingDamageTakesTheRateFactorOfThePlasticStrainRate) {
   const double dgamma = r.state.alpha;
   ASSERT_GT(dgamma, 0.0);
   const double q = jc.hardening(dgamma), p = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
-  const double eps_f = (damage.D1 + damage.D2 * std::exp(damage.D3 * p / q)) * (1 + 0.011 * std::log(dgamma / dt));
+  const double eps_f =
+      (damage.D1 + damage.D2 * std::exp(damage.D3 * p / q)) * (1 + 0.011 * std::log(dgamma / dt));
   EXPECT_NEAR(r.state.damage, dgamma / eps_f, 1e-12 * dgamma / eps_f);
   // At the reference rate (no dt) the same return takes the factor 1.
   const J2Update s = j2_return(trial, {}, mu, K, jc, damage);
-  EXPECT_NEAR(s.state.damage, dgamma / (eps_f / (1 + 0.011 * std::log(dgamma / dt))), 1e-12 * s.state.damage);
+  EXPECT_NEAR(s.state.damage, dgamma / (eps_f / (1 + 0.011 * std::log(dgamma / dt))),
+              1e-12 * s.state.damage);
 }
 
 TEST(J2Plasticity, ElasticLayersKeepNoPlasticState) {
@@ -171,7 +181,6 @@ TEST(J2Plasticity, APlasticLayerMustBeIsotropic) {
   EXPECT_THROW(FarField f(m), std::invalid_argument);
 }
 
-
 // With finite strain the closed form above holds in the Green-Lagrange strain: a uniaxial stretch
 // F = diag(lambda, 1, 1) has E_xx = (lambda^2 - 1)/2, S as s_xx, s_yy above with e = E_xx, and the
 // faces carry P = F S on their reference areas (P_xx = lambda S_xx, P_yy = S_yy). Turning the
@@ -195,20 +204,25 @@ TEST(J2Plasticity, FiniteStrainStretchThenRigidTurnIsObjective) {
       f.internal_force(force);
       alpha = exact.alpha_on_loading(Exx);
       const double Sxx = exact.sxx(Exx, alpha);
-      EXPECT_NEAR(-face_force(force, f, 0)[0] / (L * L), lambda * Sxx, 1e-9 * Sxx) << "degree " << degree;
-      EXPECT_NEAR(-face_force(force, f, 1)[1] / (L * L), exact.syy(Exx, alpha), 1e-9 * Sxx) << "degree " << degree;
+      EXPECT_NEAR(-face_force(force, f, 0)[0] / (L * L), lambda * Sxx, 1e-9 * Sxx)
+          << "degree " << degree;
+      EXPECT_NEAR(-face_force(force, f, 1)[1] / (L * L), exact.syy(Exx, alpha), 1e-9 * Sxx)
+          << "degree " << degree;
     }
     EXPECT_GT(alpha, 1e-3);
     EXPECT_NEAR(f.max_equivalent_plastic_strain(), alpha, 1e-12);
     const double work = f.plastic_work(), Sxx = exact.sxx(E_max, alpha);
     for (int k = 1; k <= 10; ++k) {
       const double turn = 0.5 * std::numbers::pi * k / 10, c = std::cos(turn), s = std::sin(turn);
-      for (FarField* g : {&f, &small}) deform(*g, {{{c * lambda - 1, -s, 0}, {s * lambda, c - 1, 0}, {0, 0, 0}}});
+      for (FarField* g : {&f, &small})
+        deform(*g, {{{c * lambda - 1, -s, 0}, {s * lambda, c - 1, 0}, {0, 0, 0}}});
       small.internal_force(force);
       f.internal_force(force);
       const auto fx = face_force(force, f, 0);
-      EXPECT_NEAR(-fx[0] / (L * L), c * lambda * Sxx, 1e-9 * Sxx) << "degree " << degree << ", turn " << k;
-      EXPECT_NEAR(-fx[1] / (L * L), s * lambda * Sxx, 1e-9 * Sxx) << "degree " << degree << ", turn " << k;
+      EXPECT_NEAR(-fx[0] / (L * L), c * lambda * Sxx, 1e-9 * Sxx)
+          << "degree " << degree << ", turn " << k;
+      EXPECT_NEAR(-fx[1] / (L * L), s * lambda * Sxx, 1e-9 * Sxx)
+          << "degree " << degree << ", turn " << k;
       EXPECT_NEAR(fx[2] / (L * L), 0.0, 1e-9 * Sxx) << "degree " << degree << ", turn " << k;
     }
     EXPECT_NEAR(f.max_equivalent_plastic_strain(), alpha, 1e-12);

@@ -23,7 +23,7 @@ TEST(Orthotropic, HoneycombCoreClosedForms) {
   const auto c = honeycomb_core(Es, nus, D, t);
   const double solidity = (2 * t / D) * (1 - t / (2 * D));
   EXPECT_NEAR(honeycomb_core_solidity(D, t), 0.033055555555555555, 1e-15);
-  EXPECT_DOUBLE_EQ(c.E3, Es * solidity);                 // 2.413 GPa
+  EXPECT_DOUBLE_EQ(c.E3, Es * solidity);                  // 2.413 GPa
   EXPECT_DOUBLE_EQ(c.G13, Es / (2 * (1 + nus)) * t / D);  // 457.4 MPa
   EXPECT_DOUBLE_EQ(c.G23, c.G13);
   const double tl = t * std::sqrt(3.0) / D;  // t / l with l = D / sqrt(3)

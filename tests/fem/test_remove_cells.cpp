@@ -31,9 +31,11 @@ LayeredMesh sandwich(int degree, bool plastic, std::optional<std::array<double, 
   m.lower = {0, 0};
   m.x_steps = {2e-3, 2e-3, 2e-3, 3e-3, 3e-3};
   m.y_steps = {2e-3, 2e-3, 2e-3, 2e-3, 4e-3};
-  const Orthotropic face = isotropic(test::E, test::nu), core = honeycomb_core(test::E, test::nu, 3e-3, 0.05e-3);
+  const Orthotropic face = isotropic(test::E, test::nu),
+                    core = honeycomb_core(test::E, test::nu, 3e-3, 0.05e-3);
   Layer rear{"rear", 0, t, 1, face, test::rho, {}, {}, {}};
-  Layer mid{"core", t, t + c, 2, core, test::rho * honeycomb_core_solidity(3e-3, 0.05e-3), {}, {}, {}};
+  Layer mid{"core", t,  t + c, 2, core, test::rho * honeycomb_core_solidity(3e-3, 0.05e-3),
+            {},     {}, {}};
   Layer front{"front", t + c, 2 * t + c, 1, face, test::rho, {}, {}, {}};
   if (plastic) {
     rear.plasticity = front.plasticity = test::al6061();
@@ -55,12 +57,15 @@ std::array<double, 3> dent(const double* x) {
   const double w = -2e-4 * std::exp(-r2);
   return {3e-3 * x[0] + 1e-3 * x[2], -2e-3 * x[1], w * (1.0 + 50.0 * x[2])};
 }
-std::array<double, 3> velocity(const double* x) { return {10.0 * x[1] / 12e-3, -5.0, 30.0 * x[0] / 12e-3}; }
+std::array<double, 3> velocity(const double* x) {
+  return {10.0 * x[1] / 12e-3, -5.0, 30.0 * x[0] / 12e-3};
+}
 
 // The node of `b` at each node of `a` (their positions agree to 1e-12 m).
 std::vector<std::size_t> match_nodes(const FarField& a, const FarField& b) {
   auto key = [](const double* x) {
-    return std::array<long long, 3>{std::llround(x[0] * 1e12), std::llround(x[1] * 1e12), std::llround(x[2] * 1e12)};
+    return std::array<long long, 3>{std::llround(x[0] * 1e12), std::llround(x[1] * 1e12),
+                                    std::llround(x[2] * 1e12)};
   };
   std::map<std::array<long long, 3>, std::size_t> of_b;
   const auto xb = b.reference_positions();
@@ -98,8 +103,10 @@ TEST(RemoveCells, LeavesTheFarFieldOfAMeshBuiltWithTheHole) {
   const std::array<double, 4> hole{0.0, 0.0, 6e-3, 4e-3};  // 3 x 2 elements in plane
   for (const int degree : {1, 2})
     for (const bool plastic : {false, true}) {
-      SCOPED_TRACE(::testing::Message() << "degree " << degree << (plastic ? ", plastic" : ", elastic"));
-      FarField holed(sandwich(degree, plastic, hole)), whole(sandwich(degree, plastic, std::nullopt));
+      SCOPED_TRACE(::testing::Message()
+                   << "degree " << degree << (plastic ? ", plastic" : ", elastic"));
+      FarField holed(sandwich(degree, plastic, hole)),
+          whole(sandwich(degree, plastic, std::nullopt));
       const double mass_before = [&] {
         double m = 0;
         for (const double x : whole.lumped_mass()) m += x;
@@ -137,7 +144,8 @@ TEST(RemoveCells, LeavesTheFarFieldOfAMeshBuiltWithTheHole) {
         if (shared[m]) continue;
         ++detached;
         detached_mass += whole.lumped_mass()[m];
-        for (int k = 0; k < 3; ++k) detached_force = std::max(detached_force, std::abs(fw[3 * m + k]));
+        for (int k = 0; k < 3; ++k)
+          detached_force = std::max(detached_force, std::abs(fw[3 * m + k]));
       }
       EXPECT_GT(detached, 0u);
       EXPECT_EQ(detached_mass, 0.0);
@@ -147,13 +155,16 @@ TEST(RemoveCells, LeavesTheFarFieldOfAMeshBuiltWithTheHole) {
       EXPECT_LT(mass_after, mass_before);
       EXPECT_NEAR(whole.strain_energy(), holed.strain_energy(), 1e-12 * holed.strain_energy());
       EXPECT_NEAR(whole.kinetic_energy(), holed.kinetic_energy(), 1e-12 * holed.kinetic_energy());
-      EXPECT_NEAR(whole.plastic_work(), holed.plastic_work(), 1e-12 * std::max(1.0, holed.plastic_work()));
+      EXPECT_NEAR(whole.plastic_work(), holed.plastic_work(),
+                  1e-12 * std::max(1.0, holed.plastic_work()));
       if (plastic) {
         EXPECT_GT(holed.max_equivalent_plastic_strain(), 0.0);
-        EXPECT_NEAR(whole.max_equivalent_plastic_strain(), holed.max_equivalent_plastic_strain(), 1e-12);
+        EXPECT_NEAR(whole.max_equivalent_plastic_strain(), holed.max_equivalent_plastic_strain(),
+                    1e-12);
         EXPECT_NEAR(whole.max_core_plastic_strain(), holed.max_core_plastic_strain(), 1e-12);
       }
-      for (int k = 0; k < 3; ++k) EXPECT_NEAR(whole.momentum()[k], holed.momentum()[k], 1e-12 * holed.kinetic_energy());
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(whole.momentum()[k], holed.momentum()[k], 1e-12 * holed.kinetic_energy());
       EXPECT_EQ(vtu_cells(whole), vtu_cells(holed));
 
       // A step of each: the shared nodes move alike, the detached ones stay at rest.
@@ -191,7 +202,8 @@ TEST(RemoveCells, AFarFieldTakenOverWhollyVisitsNoCell) {
 // u = A X + c and v = B X + w: every element holds them exactly, so a sample anywhere gives them,
 // the strain sym(A) and the stress C : sym(A) of the point's layer.
 TEST(FarFieldSample, GivesTheFieldsTheElementsHold) {
-  const std::array<std::array<double, 3>, 3> A{{{1e-3, 2e-4, -1e-4}, {3e-4, -5e-4, 2e-4}, {-2e-4, 1e-4, 4e-4}}};
+  const std::array<std::array<double, 3>, 3> A{
+      {{1e-3, 2e-4, -1e-4}, {3e-4, -5e-4, 2e-4}, {-2e-4, 1e-4, 4e-4}}};
   for (const int degree : {1, 2}) {
     SCOPED_TRACE(::testing::Message() << "degree " << degree);
     FarField f(sandwich(degree, false, std::array<double, 4>{0.0, 0.0, 2e-3, 2e-3}));
@@ -201,8 +213,9 @@ TEST(FarFieldSample, GivesTheFieldsTheElementsHold) {
     for (std::size_t a = 0; a < f.node_count(); ++a)
       for (int i = 0; i < 3; ++i) v[3 * a + i] = 5.0 * i - 200.0 * x[3 * a + (i + 1) % 3];
     // In the rear sheet, the core, the front sheet; on a shared face; in the hole; outside.
-    const std::vector<double> points{7.1e-3, 3.3e-3, 0.2e-3,  5.5e-3, 9.9e-3, 2.0e-3, 11.0e-3, 1.0e-3, 4.9e-3,
-                                     4e-3,   6e-3,   t,       1e-3,   1e-3,   2e-3,   13e-3,   1e-3,   2e-3};
+    const std::vector<double> points{7.1e-3,  3.3e-3, 0.2e-3, 5.5e-3, 9.9e-3, 2.0e-3,
+                                     11.0e-3, 1.0e-3, 4.9e-3, 4e-3,   6e-3,   t,
+                                     1e-3,    1e-3,   2e-3,   13e-3,  1e-3,   2e-3};
     const auto r = f.sample(points);
     const std::array<int, 6> layers{0, 1, 2, 1, -1, -1};  // on a face: the cell above
     for (std::size_t s = 0; s < r.size(); ++s) {
@@ -210,17 +223,27 @@ TEST(FarFieldSample, GivesTheFieldsTheElementsHold) {
       if (r[s].layer < 0) continue;
       const double* X = &points[3 * s];
       for (int i = 0; i < 3; ++i) {
-        const double u = std::array<double, 3>{1e-5, -2e-5, 3e-5}[i] + A[i][0] * X[0] + A[i][1] * X[1] + A[i][2] * X[2];
+        const double u = std::array<double, 3>{1e-5, -2e-5, 3e-5}[i] + A[i][0] * X[0] +
+                         A[i][1] * X[1] + A[i][2] * X[2];
         EXPECT_NEAR(r[s].displacement[i], u, 1e-15);
         EXPECT_NEAR(r[s].velocity[i], 5.0 * i - 200.0 * X[(i + 1) % 3], 1e-12);
       }
-      const Sym eps{A[0][0], A[1][1], A[2][2], 0.5 * (A[1][2] + A[2][1]), 0.5 * (A[0][2] + A[2][0]), 0.5 * (A[0][1] + A[1][0])};
+      const Sym eps{A[0][0],
+                    A[1][1],
+                    A[2][2],
+                    0.5 * (A[1][2] + A[2][1]),
+                    0.5 * (A[0][2] + A[2][0]),
+                    0.5 * (A[0][1] + A[1][0])};
       for (int k = 0; k < 6; ++k) EXPECT_NEAR(r[s].strain[k], eps[k], 1e-14);
       // sigma = C : eps with engineering shears, from fem::stiffness (orthotropic.hpp).
       const auto& layer = sandwich(degree, false, std::nullopt).layers[r[s].layer];
       const auto C = stiffness(layer.elasticity);
-      const Sym sigma{C[0] * eps[0] + C[3] * eps[1] + C[4] * eps[2], C[3] * eps[0] + C[1] * eps[1] + C[5] * eps[2],
-                      C[4] * eps[0] + C[5] * eps[1] + C[2] * eps[2], 2 * C[6] * eps[3], 2 * C[7] * eps[4], 2 * C[8] * eps[5]};
+      const Sym sigma{C[0] * eps[0] + C[3] * eps[1] + C[4] * eps[2],
+                      C[3] * eps[0] + C[1] * eps[1] + C[5] * eps[2],
+                      C[4] * eps[0] + C[5] * eps[1] + C[2] * eps[2],
+                      2 * C[6] * eps[3],
+                      2 * C[7] * eps[4],
+                      2 * C[8] * eps[5]};
       for (int k = 0; k < 6; ++k) EXPECT_NEAR(r[s].stress[k], sigma[k], 1e-9 * C[0] * 1e-3);
       EXPECT_EQ(r[s].plastic_strain, 0.0);
     }

@@ -137,7 +137,8 @@ TEST(HexPattern, APointOfAWallFindsItsFamilyAndDirection) {
       for (const double s : {0.25, 0.5, 0.75})
         for (const double off : {-0.4, 0.0, 0.4}) {
           const double o = off * pattern.half_thickness(w.family);
-          const Point2 x{w.a[0] + s * (w.b[0] - w.a[0]) - o * along[1], w.a[1] + s * (w.b[1] - w.a[1]) + o * along[0]};
+          const Point2 x{w.a[0] + s * (w.b[0] - w.a[0]) - o * along[1],
+                         w.a[1] + s * (w.b[1] - w.a[1]) + o * along[0]};
           EXPECT_EQ(pattern.wall_family(x), w.family) << rotation << " " << s << " " << off;
         }
     }
@@ -250,10 +251,11 @@ TEST(HoneycombCore, InsideTestAgreesWithTheSurface) {
   EXPECT_GT(inside, 1000);
 }
 
-// Quarter models of Turner's shots (docs/verification/paper_cases.md, "A quarter model halves a shot's cost") rest on this:
-// with a cell centre on the impact axis and the pattern turned by a multiple of 30 degrees, the
-// planes x = 0 and y = 0 are mirror planes of the core, so a quarter of the panel holds exactly a
-// quarter of its walls. A turn of 15 degrees breaks the x = 0 mirror (the negative control).
+// Quarter models of Turner's shots (docs/verification/paper_cases.md, "A quarter model halves a
+// shot's cost") rest on this: with a cell centre on the impact axis and the pattern turned by a
+// multiple of 30 degrees, the planes x = 0 and y = 0 are mirror planes of the core, so a quarter of
+// the panel holds exactly a quarter of its walls. A turn of 15 degrees breaks the x = 0 mirror (the
+// negative control).
 TEST(HexPattern, CellCentreAxesAreMirrorPlanesAtMultiplesOf30Degrees) {
   const double turns[] = {0.0, 30.0, 60.0, 90.0, 15.0};
   for (const double degrees : turns) {

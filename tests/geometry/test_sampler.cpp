@@ -21,9 +21,9 @@ namespace {
 
 constexpr double mm = 1e-3;
 
-// The 1 g study model's discretisation (cases/paper/study/panel.toml, resolution = "paper"): grid cells of 0.25 mm, 2
-// points per cell and axis (h = 0.125 mm), refinement factor 3 (h / 3) near the impact point;
-// grid origin at (-18, 0, -20) mm.
+// The 1 g study model's discretisation (cases/paper/study/panel.toml, resolution = "paper"): grid
+// cells of 0.25 mm, 2 points per cell and axis (h = 0.125 mm), refinement factor 3 (h / 3) near the
+// impact point; grid origin at (-18, 0, -20) mm.
 SamplingSettings study_sampling(bool refined) {
   SamplingSettings s;
   s.spacing = 0.125 * mm;

@@ -10,7 +10,9 @@
 namespace hvi::materials {
 namespace {
 
-JohnsonCookStrength paper_al() { return *mpm::find_library_material("Al6061")->parameters.johnson_cook; }
+JohnsonCookStrength paper_al() {
+  return *mpm::find_library_material("Al6061")->parameters.johnson_cook;
+}
 
 TEST(JohnsonCook, YieldStressEqualsClosedForm) {
   const JohnsonCookStrength jc = paper_al();
@@ -26,8 +28,8 @@ TEST(JohnsonCook, YieldStressEqualsClosedForm) {
 TEST(JohnsonCook, RateAndTemperatureTermsAreClamped) {
   const JohnsonCookStrength jc = paper_al();
   const double A = 265e6;
-  EXPECT_DOUBLE_EQ(jc.yield_stress(0.0, 1e-3, 293.0), A);   // rate below the reference: no softening
-  EXPECT_DOUBLE_EQ(jc.yield_stress(0.0, 1.0, 200.0), A);    // below room temperature: T* = 0
+  EXPECT_DOUBLE_EQ(jc.yield_stress(0.0, 1e-3, 293.0), A);  // rate below the reference: no softening
+  EXPECT_DOUBLE_EQ(jc.yield_stress(0.0, 1.0, 200.0), A);   // below room temperature: T* = 0
   EXPECT_DOUBLE_EQ(jc.yield_stress(0.5, 1e4, 900.0), 0.0);  // above melt: T* = 1
 }
 
@@ -45,7 +47,8 @@ TEST(JohnsonCook, RadialReturnEndsOnTheYieldSurface) {
         continue;
       }
       // Newton converged to 1e-14 relative in d: the residual is round-off of q (1e-12 of q).
-      EXPECT_NEAR(q, jc.hardening(eps_p + d) * rate * thermal, 1e-10 * q) << q_trial << " " << eps_p;
+      EXPECT_NEAR(q, jc.hardening(eps_p + d) * rate * thermal, 1e-10 * q)
+          << q_trial << " " << eps_p;
       EXPECT_GT(d, 0.0);
     }
   }

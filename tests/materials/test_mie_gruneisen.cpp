@@ -11,7 +11,9 @@
 namespace hvi::materials {
 namespace {
 
-MieGruneisen al6061() { return *mpm::find_library_material("Al6061")->parameters.mie_gruneisen; }
+MieGruneisen al6061() {
+  return *mpm::find_library_material("Al6061")->parameters.mie_gruneisen;
+}
 
 TEST(MieGruneisen, PressureEqualsEquationsFourAndFive) {
   const MieGruneisen mg = al6061();  // rho0 2770, c0 5350, s 1.34, Gamma0 2.0
@@ -34,7 +36,8 @@ TEST(MieGruneisen, PressureEqualsEquationsFourAndFive) {
   }
   // Far expanded debris keeps a bounded pressure and sound speed.
   EXPECT_GT(mg.pressure(rho0 / 80, 5e5), -rho0 * c0 * c0);
-  EXPECT_NEAR(mg.bulk_sound_speed_squared(rho0 / 80, mg.pressure(rho0 / 80, 0.0)), 0.1 * c0 * c0, 1e-9 * c0 * c0);
+  EXPECT_NEAR(mg.bulk_sound_speed_squared(rho0 / 80, mg.pressure(rho0 / 80, 0.0)), 0.1 * c0 * c0,
+              1e-9 * c0 * c0);
   // The energy coefficient dp/de is continuous at rho0 and bounded by Gamma0 rho0 in expansion.
   EXPECT_DOUBLE_EQ(mg.energy_coefficient(rho0), g0 * rho0);
   EXPECT_DOUBLE_EQ(mg.energy_coefficient(rho0 / 250), g0 * rho0 / 250);
@@ -66,7 +69,8 @@ TEST(MieGruneisen, SoundSpeedAtReferenceIsC0) {
   const MieGruneisen mg = al6061();
   EXPECT_NEAR(std::sqrt(mg.bulk_sound_speed_squared(2770.0, 0.0)), 5350.0, 1e-9 * 5350.0);
   // Compression stiffens the material.
-  EXPECT_GT(mg.bulk_sound_speed_squared(1.2 * 2770.0, mg.pressure(1.2 * 2770.0, 0.0)), 5350.0 * 5350.0);
+  EXPECT_GT(mg.bulk_sound_speed_squared(1.2 * 2770.0, mg.pressure(1.2 * 2770.0, 0.0)),
+            5350.0 * 5350.0);
 }
 
 }  // namespace

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
 
 #include "materials/principal_stress.hpp"
 #include "materials/tensor.hpp"
@@ -21,7 +21,8 @@ TEST(PrincipalStress, LargestEigenvalueMatchesEigen) {
     if (k % 10 == 0) s[sym::xy] = s[sym::xz] = s[sym::yz] = 0.0;  // already diagonal
     Eigen::Matrix3d M;
     M << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
-    const double expected = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(M).eigenvalues().maxCoeff();
+    const double expected =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(M).eigenvalues().maxCoeff();
     // The trigonometric solution loses a few digits near repeated roots: 1e-9 of the scale.
     EXPECT_NEAR(max_principal(s), expected, 1e-9 * 3e9);
   }
@@ -39,8 +40,8 @@ TEST(PrincipalStress, BoundedTestAnswersAsTheEigenvalue) {
     for (double& c : s) c = u(rng);
     if (k % 10 == 0) s[sym::xy] = s[sym::xz] = s[sym::yz] = 0.0;
     const double sigma_1 = max_principal(s);
-    for (const double limit : {u(rng), sigma_1, std::nextafter(sigma_1, 1e10), std::nextafter(sigma_1, -1e10),
-                               sigma_1 * (1 + 1e-12), 5e8}) {
+    for (const double limit : {u(rng), sigma_1, std::nextafter(sigma_1, 1e10),
+                               std::nextafter(sigma_1, -1e10), sigma_1 * (1 + 1e-12), 5e8}) {
       ASSERT_EQ(principal_reaches(s, limit), sigma_1 >= limit) << k;
       reached += sigma_1 >= limit;
     }

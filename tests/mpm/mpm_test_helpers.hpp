@@ -135,7 +135,8 @@ inline ::testing::AssertionResult identical_state(const Solver& a, const Solver&
   if (r.particles != s.particles || r.mass != s.mass || r.kinetic != s.kinetic ||
       r.internal != s.internal || r.momentum != s.momentum)
     return ::testing::AssertionFailure() << "removed-material ledgers differ";
-  if (x.contact_work != y.contact_work) return ::testing::AssertionFailure() << "contact work differs";
+  if (x.contact_work != y.contact_work)
+    return ::testing::AssertionFailure() << "contact work differs";
   return ::testing::AssertionSuccess();
 }
 

@@ -16,8 +16,12 @@ namespace {
 // every one of them was its own.
 class Recording : public LinearElastic {
  public:
-  Recording(std::string name, double E, std::int64_t index, std::vector<std::int64_t>& ids, bool& foreign)
-      : LinearElastic(std::move(name), 2700.0, E, 0.25), index_(index), ids_(ids), foreign_(foreign) {}
+  Recording(std::string name, double E, std::int64_t index, std::vector<std::int64_t>& ids,
+            bool& foreign)
+      : LinearElastic(std::move(name), 2700.0, E, 0.25),
+        index_(index),
+        ids_(ids),
+        foreign_(foreign) {}
   void initialise(Particles& particles, ParticleRange range) const override {
     for (std::size_t p = range.begin; p < range.end; ++p) {
       ids_.push_back(particles.id[p]);
@@ -41,11 +45,13 @@ TEST(AdoptParticles, EachMaterialsRunIsInitialisedByItAndTheStiffestSetsTheStep)
   materials.push_back(std::make_unique<Recording>("stiff", stiff, 1, stiff_ids, stiff_foreign));
   SolverSettings settings;
   Solver solver(grid({0, 0, 0}, h, {8, 8, 8}), settings, std::move(materials), {"block"}, {});
-  add_body(solver, geometry::Box({2 * h, 2 * h, 2 * h}, {4 * h, 4 * h, 4 * h}), 2, 0, 0, uniform({0, 0, 0}));
+  add_body(solver, geometry::Box({2 * h, 2 * h, 2 * h}, {4 * h, 4 * h, 4 * h}), 2, 0, 0,
+           uniform({0, 0, 0}));
   solver.initialise();
   const auto* soft_material = dynamic_cast<const LinearElastic*>(solver.materials()[0].get());
   const auto* stiff_material = dynamic_cast<const LinearElastic*>(solver.materials()[1].get());
-  const double c_soft = soft_material->p_wave_speed(2700.0), c_stiff = stiff_material->p_wave_speed(2700.0);
+  const double c_soft = soft_material->p_wave_speed(2700.0),
+               c_stiff = stiff_material->p_wave_speed(2700.0);
   // Before: only the soft block, so its wave speed sets the step (to round-off: rho = m / V).
   EXPECT_NEAR(solver.next_time_step(), settings.cfl * h / c_soft, 1e-12 * h / c_soft);
   soft_ids.clear();
@@ -58,7 +64,8 @@ TEST(AdoptParticles, EachMaterialsRunIsInitialisedByItAndTheStiffestSetsTheStep)
   P.resize(first + kinds.size());
   for (std::size_t k = 0; k < kinds.size(); ++k) {
     const std::size_t p = first + k;
-    const double x[3] = {(5.25 + 0.5 * static_cast<double>(k % 2)) * h, 5.25 * h, (5.25 + 0.5 * static_cast<double>(k / 2)) * h};
+    const double x[3] = {(5.25 + 0.5 * static_cast<double>(k % 2)) * h, 5.25 * h,
+                         (5.25 + 0.5 * static_cast<double>(k / 2)) * h};
     for (int d = 0; d < 3; ++d) P.position[3 * p + d] = x[d];
     P.volume0[p] = P.volume[p] = h * h * h / 8;
     P.mass[p] = 2700.0 * P.volume[p];

@@ -184,9 +184,9 @@ TEST(Boundaries, FixedPlaneStopsTangentialVelocity) {
 TEST(Boundaries, APointBeyondASymmetryPlaneIsReflectedBack) {
   const double h = 1e-3, d = 1e-7;
   const GridGeometry g = grid({-2 * h, 0, 0}, h, {8, 8, 8});
-  const std::vector<GridBoundary> conditions{{0, 2, true, BoundaryType::symmetry},    // x = 0
-                                             {2, 6, false, BoundaryType::symmetry},   // z = 6h
-                                             {1, 1, true, BoundaryType::fixed}};      // y = h
+  const std::vector<GridBoundary> conditions{{0, 2, true, BoundaryType::symmetry},   // x = 0
+                                             {2, 6, false, BoundaryType::symmetry},  // z = 6h
+                                             {1, 1, true, BoundaryType::fixed}};     // y = h
   Particles P;
   P.resize(5);
   const double x[5][3] = {{-d, 3 * h, 3 * h},         // beyond x = 0
@@ -236,11 +236,12 @@ TEST(Boundaries, PointsOnASymmetryPlaneAreNotLostThroughIt) {
   Solver solver(grid({0, 0, 0}, h, {12, 8, 8}), settings,
                 one_material(std::make_unique<LinearElastic>("aluminium", 2700.0, 70e9, 0.33)),
                 {"block"}, {{0, 0, true, BoundaryType::symmetry}});
-  const std::size_t n = add_body(solver, geometry::Box({0, 2 * h, 2 * h}, {4 * h, 6 * h, 6 * h}),
-                                 2, 0, 0, uniform({-v, 0, 0}));
+  const std::size_t n = add_body(solver, geometry::Box({0, 2 * h, 2 * h}, {4 * h, 6 * h, 6 * h}), 2,
+                                 0, 0, uniform({-v, 0, 0}));
   Particles& P = solver.particles();
   std::size_t on_plane = 0;
-  for (std::size_t p = 0; p < n; ++p) {  // lattice at h/4, 3h/4, ...: shift the first layer onto x = 0
+  for (std::size_t p = 0; p < n;
+       ++p) {  // lattice at h/4, 3h/4, ...: shift the first layer onto x = 0
     P.position[3 * p] -= 0.25 * h;
     if (P.position[3 * p] == 0.0) ++on_plane;
   }
@@ -254,9 +255,10 @@ TEST(Boundaries, PointsOnASymmetryPlaneAreNotLostThroughIt) {
     energy_swing = std::max(energy_swing, std::fabs(solver.energy().total() / energy0 - 1.0));
   }
   const EnergyReport e = solver.energy();
-  std::printf("[on-plane layer, cpgimp] removed %lld points, max depth beyond the plane %.3g m, "
-              "max |E/E0 - 1| %.3f\n",
-              static_cast<long long>(solver.removed().particles), beyond, energy_swing);
+  std::printf(
+      "[on-plane layer, cpgimp] removed %lld points, max depth beyond the plane %.3g m, "
+      "max |E/E0 - 1| %.3f\n",
+      static_cast<long long>(solver.removed().particles), beyond, energy_swing);
   EXPECT_EQ(solver.removed().particles, 0);
   EXPECT_EQ(P.size(), n);
   EXPECT_EQ(e.mass, mass);

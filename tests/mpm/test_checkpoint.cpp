@@ -97,7 +97,8 @@ TEST_P(Restart, ResumedRunIsBitwiseIdentical) {
   for (const auto& f : reference->particles().real_fields()) {
     if (f.scratch) continue;
     const auto& fields = resumed->particles().real_fields();
-    const auto same = std::find_if(fields.begin(), fields.end(), [&](const auto& g) { return g.name == f.name; });
+    const auto same =
+        std::find_if(fields.begin(), fields.end(), [&](const auto& g) { return g.name == f.name; });
     ASSERT_NE(same, fields.end()) << f.name;
     EXPECT_EQ(same->output, f.output) << f.name;
   }
@@ -169,7 +170,8 @@ TEST(Restart, FailedWritesLeaveNoPartialFiles) {
   }
   EXPECT_EQ(read_file(file), last);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path() / "snapshots"), fs::directory_iterator()), 1);
+  EXPECT_EQ(
+      std::distance(fs::directory_iterator(dir.path() / "snapshots"), fs::directory_iterator()), 1);
   EXPECT_EQ(read_file(dir.path() / "particles.xmf"), index);
 }
 
@@ -265,7 +267,8 @@ TEST(Snapshots, SameStateGivesSameBytes) {
   // What a run announces it will write (the disk it needs): the datasets' bytes, which the files
   // exceed only by their HDF5 metadata (measured 6.1 and 6.7 kB here, for 333 and 288 kB of data;
   // bound 32 kB).
-  const double snapshot = static_cast<double>(io::snapshot_bytes_per_particle(s->particles()) * s->particles().size());
+  const double snapshot =
+      static_cast<double>(io::snapshot_bytes_per_particle(s->particles()) * s->particles().size());
   const double checkpoint = static_cast<double>(io::checkpoint_bytes(*s));
   EXPECT_GE(static_cast<double>(fa.size()), snapshot);
   EXPECT_LT(static_cast<double>(fa.size()), snapshot + 32e3);
@@ -379,7 +382,8 @@ TEST(Hdf5File, ErrorsSayWhyTheSystemRefused) {
     io::Hdf5File file("/dev/full", io::Hdf5File::Mode::create);
     FAIL() << "wrote to /dev/full";
   } catch (const io::Hdf5Error& e) {
-    EXPECT_NE(std::string(e.what()).find(": No space left on device"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(": No space left on device"), std::string::npos)
+        << e.what();
   }
 }
 

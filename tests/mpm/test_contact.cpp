@@ -61,9 +61,12 @@ BarResult collide_bars(std::optional<ContactSettings> with) {
   SolverSettings settings;
   settings.shape = ShapeFunction::gimp;
   settings.contact = with;
-  const std::vector<GridBoundary> walls = {{1, 0, true, BoundaryType::symmetry}, {1, 2, false, BoundaryType::symmetry},
-                                           {2, 0, true, BoundaryType::symmetry}, {2, 2, false, BoundaryType::symmetry}};
-  Solver solver(grid({-24 * h, 0, 0}, h, {48, 2, 2}), settings, aluminium(), {"left", "right"}, walls);
+  const std::vector<GridBoundary> walls = {{1, 0, true, BoundaryType::symmetry},
+                                           {1, 2, false, BoundaryType::symmetry},
+                                           {2, 0, true, BoundaryType::symmetry},
+                                           {2, 2, false, BoundaryType::symmetry}};
+  Solver solver(grid({-24 * h, 0, 0}, h, {48, 2, 2}), settings, aluminium(), {"left", "right"},
+                walls);
   add_body(solver, geometry::Box({-L, 0, 0}, {0, 2 * h, 2 * h}), 2, 0, 0, uniform({v0, 0, 0}));
   add_body(solver, geometry::Box({0, 0, 0}, {L, 2 * h, 2 * h}), 2, 1, 0, uniform({-v0, 0, 0}));
   solver.initialise();
@@ -74,7 +77,8 @@ BarResult collide_bars(std::optional<ContactSettings> with) {
   while (solver.time() < 4 * L / c_p) {
     solver.step();
     const Vec3 p = total_momentum(solver);
-    r.max_momentum_error = std::max(r.max_momentum_error, std::fabs(p[0] - e0.momentum[0]) / (m * v0));
+    r.max_momentum_error =
+        std::max(r.max_momentum_error, std::fabs(p[0] - e0.momentum[0]) / (m * v0));
     const EnergyReport e = solver.energy();
     r.max_energy_error = std::max(r.max_energy_error, std::fabs(e.kinetic + e.internal - E0) / E0);
     const double v = body_velocity(solver, 0)[0] / v0;
@@ -83,10 +87,12 @@ BarResult collide_bars(std::optional<ContactSettings> with) {
   }
   r.left_velocity = body_velocity(solver, 0)[0] / v0;
   r.reversal_time = t_low > 0 ? (t_low - t_high) / (L / c_p) : 0.0;
-  std::printf("[bars, %s] left bar at %+.4f v0 at 4 L / c; +0.5 to -0.5 v0 in %.3f L / c (theory 1); max |dE| / E0 "
-              "%.3e; max |dP| / (m v0) %.2e; %lld steps\n",
-              with ? "contact" : "one field", r.left_velocity, r.reversal_time, r.max_energy_error, r.max_momentum_error,
-              static_cast<long long>(solver.step_count()));
+  std::printf(
+      "[bars, %s] left bar at %+.4f v0 at 4 L / c; +0.5 to -0.5 v0 in %.3f L / c (theory 1); max "
+      "|dE| / E0 "
+      "%.3e; max |dP| / (m v0) %.2e; %lld steps\n",
+      with ? "contact" : "one field", r.left_velocity, r.reversal_time, r.max_energy_error,
+      r.max_momentum_error, static_cast<long long>(solver.step_count()));
   return r;
 }
 
@@ -98,9 +104,9 @@ TEST(Contact, TouchingBarsPartAtTheirImpactSpeed) {
   // The interface force is constant, rho c v0 A: the mean velocity falls from +0.5 to -0.5 v0 in
   // L / c. Measured 1.014; 8% is 2.5 steps (c dt = h / 2, so L / c is 32 steps).
   EXPECT_NEAR(r.reversal_time, 1.0, 0.08);
-  // They part at 2 L / c and fly apart: the left bar at measured -0.90 v0 at 4 L / c. The rest of the
-  // energy stays as the bars' ringing (MPM's dispersion rounds the wave's sharp front, so a bar is
-  // not unstressed the instant it leaves); 0.85 v0 bounds it.
+  // They part at 2 L / c and fly apart: the left bar at measured -0.90 v0 at 4 L / c. The rest of
+  // the energy stays as the bars' ringing (MPM's dispersion rounds the wave's sharp front, so a bar
+  // is not unstressed the instant it leaves); 0.85 v0 bounds it.
   EXPECT_LT(r.left_velocity, -0.85);
   // Frictionless contact stores and returns the collision's energy: KE + strain energy within 4%
   // of the initial over the run (measured 2.5%; the one-field pair: 2.6%).
@@ -116,9 +122,10 @@ TEST(Contact, WithoutContactTouchingBarsBond) {
 }
 
 struct ObliqueResult {
-  double dv_n = 0.0, dv_t = 0.0;  // change of the sphere's mean velocity, normal and tangential, m/s
-  double energy_error = 0.0;      // (KE + IE + friction heat - E0) / E0 at the end
-  double friction_share = 0.0;    // friction heat / E0
+  double dv_n = 0.0,
+         dv_t = 0.0;            // change of the sphere's mean velocity, normal and tangential, m/s
+  double energy_error = 0.0;    // (KE + IE + friction heat - E0) / E0 at the end
+  double friction_share = 0.0;  // friction heat / E0
   double max_momentum_error = 0.0;
 };
 
@@ -130,8 +137,10 @@ ObliqueResult oblique(double mu) {
   SolverSettings settings;
   settings.shape = ShapeFunction::gimp;
   settings.contact = contact(mu);
-  Solver solver(grid({-16 * h, -16 * h, -8 * h}, h, {32, 32, 24}), settings, aluminium(), {"block", "sphere"}, {});
-  add_body(solver, geometry::Box({-14 * h, -14 * h, -6 * h}, {14 * h, 14 * h, 0}), 2, 0, 0, uniform({0, 0, 0}));
+  Solver solver(grid({-16 * h, -16 * h, -8 * h}, h, {32, 32, 24}), settings, aluminium(),
+                {"block", "sphere"}, {});
+  add_body(solver, geometry::Box({-14 * h, -14 * h, -6 * h}, {14 * h, 14 * h, 0}), 2, 0, 0,
+           uniform({0, 0, 0}));
   add_body(solver, geometry::Sphere({-6 * h, 0, R + h}, R), 2, 1, 0, uniform({v, 0, -v}));
   solver.initialise();
   const EnergyReport e0 = solver.energy();
@@ -141,7 +150,8 @@ ObliqueResult oblique(double mu) {
     solver.step();
     const Vec3 p = total_momentum(solver);
     for (int d = 0; d < 3; ++d)
-      r.max_momentum_error = std::max(r.max_momentum_error, std::fabs(p[d] - e0.momentum[d]) / (e0.mass * v));
+      r.max_momentum_error =
+          std::max(r.max_momentum_error, std::fabs(p[d] - e0.momentum[d]) / (e0.mass * v));
   }
   const Vec3 v_end = body_velocity(solver, 1);
   r.dv_n = v_end[2] - v_start[2];
@@ -149,10 +159,12 @@ ObliqueResult oblique(double mu) {
   const EnergyReport e = solver.energy();
   r.energy_error = (e.kinetic + e.internal + e.contact - e0.kinetic) / e0.kinetic;
   r.friction_share = e.contact / e0.kinetic;
-  std::printf("[oblique, mu %.2f] sphere dv_n %+.2f m/s, dv_t %+.2f m/s (ratio %.4f); energy %+.3e with friction heat "
-              "%.3e E0; max |dP| / (m v) %.2e; %lld steps\n",
-              mu, r.dv_n, r.dv_t, -r.dv_t / r.dv_n, r.energy_error, r.friction_share, r.max_momentum_error,
-              static_cast<long long>(solver.step_count()));
+  std::printf(
+      "[oblique, mu %.2f] sphere dv_n %+.2f m/s, dv_t %+.2f m/s (ratio %.4f); energy %+.3e with "
+      "friction heat "
+      "%.3e E0; max |dP| / (m v) %.2e; %lld steps\n",
+      mu, r.dv_n, r.dv_t, -r.dv_t / r.dv_n, r.energy_error, r.friction_share, r.max_momentum_error,
+      static_cast<long long>(solver.step_count()));
   return r;
 }
 
@@ -176,7 +188,8 @@ TEST(Contact, CoulombFrictionTakesMuTimesTheNormalImpulse) {
   const double mu = 0.1;
   const ObliqueResult r = oblique(mu);
   EXPECT_LT(r.max_momentum_error, 1e-12);
-  // Measured ratio 0.0995; 3% of mu bounds it (the normal changes direction over the contact patch).
+  // Measured ratio 0.0995; 3% of mu bounds it (the normal changes direction over the contact
+  // patch).
   EXPECT_NEAR(-r.dv_t / r.dv_n, mu, 0.03 * mu);
   // The friction heat closes the balance: measured +0.45% with 11% of the energy as heat (the
   // sliding estimate mu dv_n times the mean slip, 0.1 x 320 x 144 m/s, is 11.5%); 2% bounds it.

@@ -89,7 +89,8 @@ TEST_P(Determinism, ThreadCountDoesNotChangeBits) {
   }
   for (const int threads : {2, 3}) {
     SCOPED_TRACE(std::to_string(threads) + " threads");
-    const SceneRun other = run_scene(c.shape, c.scheme, threads, 5, c.sphere_speed, c.dilatation, c.contact);
+    const SceneRun other =
+        run_scene(c.shape, c.scheme, threads, 5, c.sphere_speed, c.dilatation, c.contact);
     EXPECT_TRUE(identical_particles(one.solver->particles(), other.solver->particles()));
     EXPECT_TRUE(identical_state(*one.solver, *other.solver));
     EXPECT_TRUE(same_events(one.events, other.events));
@@ -109,8 +110,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl"},
                       Case{ShapeFunction::gimp, UpdateScheme::usl, "gimp_usl"},
                       Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf"},
-                      // The node-averaged dilatation's two extra passes (a coloured scatter per body
-                      // and a gather) keep the bits too.
+                      // The node-averaged dilatation's two extra passes (a coloured scatter per
+                      // body and a gather) keep the bits too.
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_node_average", 300.0,
                            Dilatation::node_average},
                       // Contact: a second grid and bins for the right sphere, and a correction
@@ -118,8 +119,8 @@ INSTANTIATE_TEST_SUITE_P(
                       // velocities: MUSL; USF corrects the start velocity before the stress).
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_contact", 300.0,
                            Dilatation::particle, true},
-                      Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf_contact_node_average", 300.0,
-                           Dilatation::node_average, true}),
+                      Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf_contact_node_average",
+                           300.0, Dilatation::node_average, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 // The periodic reorder really permutes the arrays (so the tests above exercise it): with

@@ -150,8 +150,12 @@ void check_scatter(ShapeFunction shape) {
   }
 }
 
-TEST(PatchKernels, ScatterIsThePlainSumGimp) { check_scatter(ShapeFunction::gimp); }
-TEST(PatchKernels, ScatterIsThePlainSumLinear) { check_scatter(ShapeFunction::linear); }
+TEST(PatchKernels, ScatterIsThePlainSumGimp) {
+  check_scatter(ShapeFunction::gimp);
+}
+TEST(PatchKernels, ScatterIsThePlainSumLinear) {
+  check_scatter(ShapeFunction::linear);
+}
 
 // Random nodal v_I, dv_I and q_I (as after update_grid and the remap), so the gathers see values
 // with no structure that could hide a wrong node.
@@ -204,7 +208,8 @@ void check_gathers(ShapeFunction shape) {
     });
   }
   for (const auto& [n, sums] : q)
-    for (int d = 0; d < 3; ++d) expect_near(s.grid.node(n[0], n[1], n[2])->q[d], sums[d], "remapped momentum");
+    for (int d = 0; d < 3; ++d)
+      expect_near(s.grid.node(n[0], n[1], n[2])->q[d], sums[d], "remapped momentum");
 
   // The gradient of the remapped field as it now stands.
   velocity_gradient(s.c.P, s.bins, s.grid, s.ctx, NodalVelocity::remapped);
@@ -215,12 +220,17 @@ void check_gathers(ShapeFunction shape) {
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) L[3 * i + j].add(node->q[i] * g[j]);
     });
-    for (int k = 0; k < 9; ++k) expect_near(s.c.P.velocity_gradient[9 * p + k], L[k], "velocity gradient");
+    for (int k = 0; k < 9; ++k)
+      expect_near(s.c.P.velocity_gradient[9 * p + k], L[k], "velocity gradient");
   }
 }
 
-TEST(PatchKernels, GathersAreThePlainSumsGimp) { check_gathers(ShapeFunction::gimp); }
-TEST(PatchKernels, GathersAreThePlainSumsLinear) { check_gathers(ShapeFunction::linear); }
+TEST(PatchKernels, GathersAreThePlainSumsGimp) {
+  check_gathers(ShapeFunction::gimp);
+}
+TEST(PatchKernels, GathersAreThePlainSumsLinear) {
+  check_gathers(ShapeFunction::linear);
+}
 
 void check_average(ShapeFunction shape) {
   Setup s(shape, 14);
@@ -253,8 +263,12 @@ void check_average(ShapeFunction shape) {
   }
 }
 
-TEST(PatchKernels, NodeAverageIsThePlainAverageGimp) { check_average(ShapeFunction::gimp); }
-TEST(PatchKernels, NodeAverageIsThePlainAverageLinear) { check_average(ShapeFunction::linear); }
+TEST(PatchKernels, NodeAverageIsThePlainAverageGimp) {
+  check_average(ShapeFunction::gimp);
+}
+TEST(PatchKernels, NodeAverageIsThePlainAverageLinear) {
+  check_average(ShapeFunction::linear);
+}
 
 }  // namespace
 }  // namespace hvi::mpm

@@ -152,7 +152,8 @@ TEST(Removal, EraseKeepsGroupsContiguousAndEverySurvivor) {
       P.material[n] = static_cast<std::int64_t>(g);
       for (int d = 0; d < 3; ++d) P.position[3 * n + d] = static_cast<double>(n) + 0.1 * d;
     }
-  // From the first group's start and end, all of the second group, the middle and end of the fourth.
+  // From the first group's start and end, all of the second group, the middle and end of the
+  // fourth.
   const std::vector<std::uint32_t> removed = {0, 1, 9, 10, 11, 12, 20, 21, 30, 37, 44};
   P.erase(removed, sizes);
   const std::set<std::uint32_t> gone(removed.begin(), removed.end());

@@ -247,7 +247,8 @@ TEST(ShapeFunctions, GimpWeightsFromTheLowestNodeAreWeights) {
     for (int d = 0; d < 3; ++d) {
       s[d] = u(rng);
       a[d] = half(rng);
-      if (k % 4 == 0) s[d] = std::round(s[d]) + (d == 0 ? a[d] : d == 1 ? 1.0 - a[d] : -a[d]);  // on joints
+      if (k % 4 == 0)
+        s[d] = std::round(s[d]) + (d == 0 ? a[d] : d == 1 ? 1.0 - a[d] : -a[d]);  // on joints
       i0[d] = GimpShape::lowest(s[d], a[d]);
     }
     GimpShape::weights_from_lowest(s, a, i0, N, dN);
@@ -255,10 +256,13 @@ TEST(ShapeFunctions, GimpWeightsFromTheLowestNodeAreWeights) {
       double Nr[3], dNr[3];
       GimpShape::weights(s[d], i0[d], a[d], Nr, dNr);
       bool same = N[d][3] == 0.0 && dN[d][3] == 0.0;
-      const double tolerance = 8 * std::numeric_limits<double>::epsilon() * (std::fabs(s[d]) + 1.0) / a[d];
+      const double tolerance =
+          8 * std::numeric_limits<double>::epsilon() * (std::fabs(s[d]) + 1.0) / a[d];
       for (int j = 0; j < 3; ++j) {
-        ASSERT_NEAR(N[d][j], Nr[j], tolerance) << "s = " << s[d] << ", a = " << a[d] << ", node " << j;
-        ASSERT_NEAR(dN[d][j], dNr[j], tolerance) << "s = " << s[d] << ", a = " << a[d] << ", node " << j;
+        ASSERT_NEAR(N[d][j], Nr[j], tolerance)
+            << "s = " << s[d] << ", a = " << a[d] << ", node " << j;
+        ASSERT_NEAR(dN[d][j], dNr[j], tolerance)
+            << "s = " << s[d] << ", a = " << a[d] << ", node " << j;
         same = same && N[d][j] == Nr[j] && dN[d][j] == dNr[j];
       }
       exact += same;
@@ -269,7 +273,8 @@ TEST(ShapeFunctions, GimpWeightsFromTheLowestNodeAreWeights) {
   EXPECT_GT(exact, samples * 9 / 10);
 }
 
-// simd::sum4 adds each vector's lanes in the order of simd::sum, so the four sums are the same bits.
+// simd::sum4 adds each vector's lanes in the order of simd::sum, so the four sums are the same
+// bits.
 TEST(Simd, FourSumsAtOnceAddInTheOrderOfOne) {
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -187,7 +187,8 @@ struct PassResults {
   std::vector<double> nodes, velocity, grid_velocity, gradient, average;
 };
 
-PassResults run_passes(Cloud& c, const GridGeometry& g, StencilCache* cache, const std::vector<double>& failed) {
+PassResults run_passes(Cloud& c, const GridGeometry& g, StencilCache* cache,
+                       const std::vector<double>& failed) {
   SparseGrid grid(g);
   ParticleBins bins;
   bin_particles(c.P, {ShapeFunction::gimp, &c.half_width}, grid, bins, {});
@@ -209,7 +210,8 @@ PassResults run_passes(Cloud& c, const GridGeometry& g, StencilCache* cache, con
   for (std::uint32_t b = 0; b < grid.block_count(); ++b)
     for (int k = 0; k < SparseGrid::block_size; ++k) {
       const ConstGridNode n = std::as_const(grid).node(b, k);
-      r.nodes.insert(r.nodes.end(), {n.mass, n.p[0], n.p[1], n.p[2], n.f[0], n.f[1], n.f[2], n.q[0], n.q[1], n.q[2]});
+      r.nodes.insert(r.nodes.end(), {n.mass, n.p[0], n.p[1], n.p[2], n.f[0], n.f[1], n.f[2], n.q[0],
+                                     n.q[1], n.q[2]});
     }
   r.velocity = c.P.velocity;
   r.grid_velocity = c.P.grid_velocity;

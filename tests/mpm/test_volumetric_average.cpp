@@ -25,7 +25,8 @@ struct Cloud {
   TransferContext context;
 
   // n random particles in [-4, 4) mm^3 on 1 mm cells, bodies 0 and 1 interleaved.
-  Cloud(std::size_t n, ShapeFunction shape, std::uint64_t seed) : grid(test::grid({-0.006, -0.006, -0.006}, 1e-3, {12, 12, 12})) {
+  Cloud(std::size_t n, ShapeFunction shape, std::uint64_t seed)
+      : grid(test::grid({-0.006, -0.006, -0.006}, 1e-3, {12, 12, 12})) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     P.resize(n);
@@ -62,7 +63,8 @@ TEST_P(NodeAverageTest, ReproducesAConstantPerBody) {
   for (std::size_t p = 0; p < value.size(); ++p) value[p] = c.P.body[p] == 0 ? 3.7 : -250.0;
   const auto out = c.average(value);
   // Partition of unity: each body gets back its own constant wherever the bodies overlap.
-  for (std::size_t p = 0; p < value.size(); ++p) ASSERT_NEAR(out[p], value[p], 1e-13 * std::fabs(value[p])) << p;
+  for (std::size_t p = 0; p < value.size(); ++p)
+    ASSERT_NEAR(out[p], value[p], 1e-13 * std::fabs(value[p])) << p;
 }
 
 TEST_P(NodeAverageTest, FailedPointsNeitherCountNorChange) {
@@ -165,9 +167,11 @@ TEST_P(NodeAverageTest, VelocityGradientScattersTheDilatationInItsPass) {
     for (int d = 0; d < 3; ++d) c.P.velocity[3 * p + d] = 100 * u(rng);
     if (p % 5 == 2) skip[p] = 1.0;
   }
-  particles_to_grid(Scatter::mass_momentum, c.P, c.bins, c.grid, c.context);  // some nodal p to take L from
+  particles_to_grid(Scatter::mass_momentum, c.P, c.bins, c.grid,
+                    c.context);  // some nodal p to take L from
   std::vector<double> trace(c.P.size()), fused_sums;
-  const NodeAverageSums fused{NodeAverage{trace.data(), c.P.body.data(), 2, skip.data()}, &fused_sums};
+  const NodeAverageSums fused{NodeAverage{trace.data(), c.P.body.data(), 2, skip.data()},
+                              &fused_sums};
   velocity_gradient(c.P, c.bins, c.grid, c.context, NodalVelocity::start, &fused, &trace);
   const std::vector<double> L_fused = c.P.velocity_gradient;
 
@@ -177,7 +181,8 @@ TEST_P(NodeAverageTest, VelocityGradientScattersTheDilatationInItsPass) {
     const double* L = &c.P.velocity_gradient[9 * p];
     plain_trace[p] = L[0] + L[4] + L[8];
   }
-  const NodeAverageSums plain{NodeAverage{plain_trace.data(), c.P.body.data(), 2, skip.data()}, &plain_sums};
+  const NodeAverageSums plain{NodeAverage{plain_trace.data(), c.P.body.data(), 2, skip.data()},
+                              &plain_sums};
   node_average_scatter(c.P, c.bins, c.grid, c.context, plain);
   EXPECT_EQ(L_fused, c.P.velocity_gradient);
   EXPECT_EQ(trace, plain_trace);

@@ -28,19 +28,23 @@ StepHistory run(std::vector<std::string> overrides) {
   const double end = 6e-6;
   while (r.solver->time() < end * (1 - 1e-12)) {
     r.solver->step(end - r.solver->time());
-    if (r.solver->time() < end * (1 - 1e-12)) smallest = std::min(smallest, r.solver->next_time_step());
+    if (r.solver->time() < end * (1 - 1e-12))
+      smallest = std::min(smallest, r.solver->next_time_step());
   }
   const auto& state = r.particles().field("failed");
-  const int eroded = static_cast<int>(std::count(state.begin(), state.end(), mpm::failure_state::eroded));
+  const int eroded =
+      static_cast<int>(std::count(state.begin(), state.end(), mpm::failure_state::eroded));
   return {smallest / first, r.solver->energy().total() / e0 - 1, eroded};
 }
 
 TEST(StabilityLong, ErosionKeepsTheThinWallStepFromCollapsing) {
   const StepHistory plain = run({});
   const StepHistory eroding = run({"material.Al5052.erosion=compression"});
-  std::printf("smallest step / first: %.3f without erosion, %.3f with (%d points eroded); energy %+.2f%% / %+.2f%%\n",
-              plain.smallest_ratio, eroding.smallest_ratio, eroding.eroded, 100 * plain.energy_error,
-              100 * eroding.energy_error);
+  std::printf(
+      "smallest step / first: %.3f without erosion, %.3f with (%d points eroded); energy %+.2f%% / "
+      "%+.2f%%\n",
+      plain.smallest_ratio, eroding.smallest_ratio, eroding.eroded, 100 * plain.energy_error,
+      100 * eroding.energy_error);
   EXPECT_LT(plain.smallest_ratio, 0.25);
   EXPECT_GT(eroding.smallest_ratio, 0.3);
   EXPECT_GT(eroding.eroded, 0);

@@ -25,7 +25,8 @@ struct Profile {
 Profile profile(const mpm::Particles& P) {
   std::vector<std::size_t> order(P.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return P.position[3 * a] < P.position[3 * b]; });
+  std::sort(order.begin(), order.end(),
+            [&](auto a, auto b) { return P.position[3 * a] < P.position[3 * b]; });
   Profile out;
   for (const auto i : order) {
     out.x.push_back(P.position[3 * i]);
@@ -71,16 +72,18 @@ void check_plate_impact(double v) {
   omp_set_num_threads(1);  // a small 1D problem: threads only add overhead
   const double rho0 = 2770, c0 = 5350, s = 1.34, h = 0.05e-3;
   const double up = v / 2, Us = c0 + s * up, P = rho0 * Us * up;
-  test::SceneRun run("verification/plate_impact.toml", {"body.flyer.velocity=[" + std::to_string(v) + ", 0, 0]"});
+  test::SceneRun run("verification/plate_impact.toml",
+                     {"body.flyer.velocity=[" + std::to_string(v) + ", 0, 0]"});
   run.run_to(0.5e-6);
   const ShockState a = measure(profile(run.particles()), 0.5e-6, up, Us, h);
   run.run_to(1.0e-6);
   const ShockState b = measure(profile(run.particles()), 1.0e-6, up, Us, h);
   const double Us_measured = (b.front - a.front) / 0.5e-6;
-  std::printf("v = %.0f m/s: P = %.4g GPa (impedance match %.4g, %+.2f%%), u_p = %.1f m/s, Us = %.1f m/s "
-              "(%.1f, %+.2f%%), front width %.1f cells, scatter %.1f%%, overshoot %.1f%%\n",
-              v, b.pressure / 1e9, P / 1e9, 100 * (b.pressure / P - 1), b.velocity, Us_measured, Us,
-              100 * (Us_measured / Us - 1), b.width_cells, 100 * b.scatter, 100 * b.overshoot);
+  std::printf(
+      "v = %.0f m/s: P = %.4g GPa (impedance match %.4g, %+.2f%%), u_p = %.1f m/s, Us = %.1f m/s "
+      "(%.1f, %+.2f%%), front width %.1f cells, scatter %.1f%%, overshoot %.1f%%\n",
+      v, b.pressure / 1e9, P / 1e9, 100 * (b.pressure / P - 1), b.velocity, Us_measured, Us,
+      100 * (Us_measured / Us - 1), b.width_cells, 100 * b.scatter, 100 * b.overshoot);
   // The bound: shocked pressure and shock speed within 3% of impedance matching.
   EXPECT_NEAR(b.pressure / P, 1.0, 0.03);
   EXPECT_NEAR(a.pressure / P, 1.0, 0.03);
@@ -96,8 +99,12 @@ void check_plate_impact(double v) {
   EXPECT_LT(b.overshoot, 0.20);
 }
 
-TEST(PlateImpact, Al6061At1kmPerSecondMatchesImpedanceMatching) { check_plate_impact(1000.0); }
-TEST(PlateImpact, Al6061At3kmPerSecondMatchesImpedanceMatching) { check_plate_impact(3000.0); }
+TEST(PlateImpact, Al6061At1kmPerSecondMatchesImpedanceMatching) {
+  check_plate_impact(1000.0);
+}
+TEST(PlateImpact, Al6061At3kmPerSecondMatchesImpedanceMatching) {
+  check_plate_impact(3000.0);
+}
 
 // The full material (Johnson-Cook strength on top of the EOS): the deviator adds 2/3 Y to the
 // longitudinal stress and an elastic precursor runs ahead, so the plastic front is measured
@@ -108,7 +115,8 @@ TEST(PlateImpact, WithJohnsonCookStrengthStaysWithin3Percent) {
   for (const double v : {1000.0, 3000.0}) {
     const double up = v / 2, Us = 5350 + 1.34 * up, P = 2770 * Us * up;
     test::SceneRun run("verification/plate_impact.toml",
-                       {"body.flyer.velocity=[" + std::to_string(v) + ", 0, 0]", "material.Al6061.strength=johnson-cook"});
+                       {"body.flyer.velocity=[" + std::to_string(v) + ", 0, 0]",
+                        "material.Al6061.strength=johnson-cook"});
     run.run_to(0.5e-6);
     const ShockState a = measure(profile(run.particles()), 0.5e-6, up, Us, 0.05e-3);
     run.run_to(1.0e-6);

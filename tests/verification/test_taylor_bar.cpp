@@ -46,10 +46,12 @@ TaylorResult run_taylor_bar(const std::vector<std::string>& overrides) {
     if (x[2] < s) r_foot = std::max(r_foot, std::hypot(x[0], x[1]));
     eps_max = std::max(eps_max, eps[p]);
   }
-  const TaylorResult r{z_max + s / 2, 2 * (r_foot + s / 2), eps_max, run.solver->energy().total() / E0 - 1};
-  std::printf("Taylor bar: L_f = %.3f mm (26.52-26.55), D_f = %.3f mm (11.18-11.22; particle centres "
-              "give %.3f), max plastic strain %.3f (1.84), energy balance %+.3f%%\n",
-              r.length * 1e3, r.foot * 1e3, 2 * r_foot * 1e3, eps_max, 100 * r.energy_error);
+  const TaylorResult r{z_max + s / 2, 2 * (r_foot + s / 2), eps_max,
+                       run.solver->energy().total() / E0 - 1};
+  std::printf(
+      "Taylor bar: L_f = %.3f mm (26.52-26.55), D_f = %.3f mm (11.18-11.22; particle centres "
+      "give %.3f), max plastic strain %.3f (1.84), energy balance %+.3f%%\n",
+      r.length * 1e3, r.foot * 1e3, 2 * r_foot * 1e3, eps_max, 100 * r.energy_error);
   return r;
 }
 

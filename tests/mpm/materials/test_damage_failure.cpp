@@ -77,7 +77,7 @@ TEST(MaxPrincipalStress, FailsAtSigmaMaxAndKeepsOnlyCompression) {
   const double compression[9] = {-rate, 0, 0, 0, 0, 0, 0, 0, 0};
   for (int k = 0; k < 400; ++k) point.step(compression, dt);  // back past the reference density
   const double* s = point.stress();
-  EXPECT_LT(s[sym::xx], 0.0);  // pressure again
+  EXPECT_LT(s[sym::xx], 0.0);                // pressure again
   EXPECT_DOUBLE_EQ(s[sym::xx], s[sym::yy]);  // but no deviator
 }
 
@@ -91,7 +91,8 @@ TEST(TulerButcher, FailsAfterTheClosedFormTimeUnderAHeldStress) {
   models.max_principal_stress.reset();
   models.johnson_cook.reset();  // elastic: a rate-dependent yield would relax the held stress
   models.heating.reset();
-  const double sigma_0 = 1.0e9, lambda = 2.0, tau = 2e-8, rate = 1e6, dt = 1e-9;  // ~0.1 GPa per step
+  const double sigma_0 = 1.0e9, lambda = 2.0, tau = 2e-8, rate = 1e6,
+               dt = 1e-9;  // ~0.1 GPa per step
   models.tuler_butcher = TulerButcher{sigma_0, lambda, tau};
   const double tension[9] = {rate, 0, 0, 0, 0, 0, 0, 0, 0}, hold[9] = {};
   for (const double target : {0.9e9, 1.5e9, 2.0e9}) {
@@ -102,7 +103,8 @@ TEST(TulerButcher, FailsAfterTheClosedFormTimeUnderAHeldStress) {
     double expected = 0.0;
     while (max_principal(point.stress()) < target) {
       point.step(tension, dt);
-      expected += dt * std::pow(std::max(max_principal(point.stress()) / sigma_0 - 1.0, 0.0), lambda) / tau;
+      expected +=
+          dt * std::pow(std::max(max_principal(point.stress()) / sigma_0 - 1.0, 0.0), lambda) / tau;
       ASSERT_NEAR(point.field("spall_damage"), expected, 1e-12);
     }
     ASSERT_EQ(point.field("failed"), 0.0);
@@ -125,7 +127,8 @@ TEST(TulerButcher, FailsAfterTheClosedFormTimeUnderAHeldStress) {
     const double t_closed_form = (1.0 - expected) * tau / std::pow(excess, lambda);
     EXPECT_NEAR(held * dt, t_closed_form, dt);
     EXPECT_EQ(point.field("spall_damage"), 1.0);
-    for (int c = 0; c < 6; ++c) EXPECT_EQ(point.stress()[c] > 0 ? point.stress()[c] : 0.0, 0.0);  // no tension left
+    for (int c = 0; c < 6; ++c)
+      EXPECT_EQ(point.stress()[c] > 0 ? point.stress()[c] : 0.0, 0.0);  // no tension left
   }
 }
 

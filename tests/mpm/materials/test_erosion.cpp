@@ -20,8 +20,8 @@ TEST(CompressionErosion, ErodesInTheStepTheVolumeRatioCrossesTheLimit) {
   const HydroMaterial with("core", eroding), without("core", plain);
   test::MaterialPoint a(with), b(without);
 
-  // Isotropic compression L = -k I: each step multiplies the volume by det(I + dt L) = (1 - k dt)^3,
-  // so the ratio first falls below 0.5 at step n* = ceil(ln 0.5 / (3 ln(1 - k dt))) = 231.
+  // Isotropic compression L = -k I: each step multiplies the volume by det(I + dt L) = (1 - k
+  // dt)^3, so the ratio first falls below 0.5 at step n* = ceil(ln 0.5 / (3 ln(1 - k dt))) = 231.
   const double k = 1e6, dt = 1e-9;
   const double L[9] = {-k, 0, 0, 0, -k, 0, 0, 0, -k};
   const int expected = static_cast<int>(std::ceil(std::log(0.5) / (3.0 * std::log(1.0 - k * dt))));
@@ -46,7 +46,8 @@ TEST(CompressionErosion, ErodesInTheStepTheVolumeRatioCrossesTheLimit) {
   const double m = a.particles.mass[0];
   const double dV = a.particles.volume[0] * (1.0 - 1.0 / std::pow(1.0 - k * dt, 3));
   const double p_twin = -b.stress()[0];
-  EXPECT_NEAR(a.particles.internal_energy[0], b.particles.internal_energy[0] + 0.5 * p_twin * dV / m,
+  EXPECT_NEAR(a.particles.internal_energy[0],
+              b.particles.internal_energy[0] + 0.5 * p_twin * dV / m,
               1e-12 * b.particles.internal_energy[0]);
   EXPECT_LT(a.particles.internal_energy[0], b.particles.internal_energy[0]);
   const double ratio = a.particles.volume[0] / a.particles.volume0[0];

@@ -52,8 +52,10 @@ TEST(JohnsonCook, UniaxialStrainPathMatchesClosedForm) {
   // The hypoelastic integration is exact for a constant L; what remains is the return's
   // round-off and the one step in which the path crosses the yield surface.
   EXPECT_LT(worst, 1e-6);
-  EXPECT_NEAR(point.field("plastic_strain"),
-              2.0 / 3.0 * eps - std::fabs(point.stress()[sym::xx] - point.stress()[sym::yy]) / (3 * G), 1e-9);
+  EXPECT_NEAR(
+      point.field("plastic_strain"),
+      2.0 / 3.0 * eps - std::fabs(point.stress()[sym::xx] - point.stress()[sym::yy]) / (3 * G),
+      1e-9);
 }
 
 // In the material the energy equation and the EOS are solved together:

@@ -27,7 +27,8 @@ std::vector<std::map<std::string, std::string>> read_table() {
       continue;
     }
     std::map<std::string, std::string> row;
-    for (std::size_t k = 0; k < header.size(); ++k) row[header[k]] = k < cells.size() ? cells[k] : "";
+    for (std::size_t k = 0; k < header.size(); ++k)
+      row[header[k]] = k < cells.size() ? cells[k] : "";
     rows.push_back(row);
   }
   return rows;
@@ -80,7 +81,8 @@ TEST(Library, HoldsThePapersTablesOneAndFour) {
       EXPECT_FALSE(p.max_principal_stress.has_value());
   }
   // Plus the verification metals.
-  for (const char* extra : {"OFHC-Cu", "4340-steel", "42CrMo4"}) EXPECT_NE(find_library_material(extra), nullptr) << extra;
+  for (const char* extra : {"OFHC-Cu", "4340-steel", "42CrMo4"})
+    EXPECT_NE(find_library_material(extra), nullptr) << extra;
 }
 
 }  // namespace
