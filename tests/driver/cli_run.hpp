@@ -77,4 +77,19 @@ inline std::vector<std::vector<double>> csv_rows(const fs::path& p, std::string*
   return rows;
 }
 
+// Every snapshot file, energy.csv and the XDMF index of two runs are byte-identical; `a` has
+// `snapshots` snapshot files (by default the scene's t = 0, 1, 2, 3, 4 us).
+inline void expect_same_output(const fs::path& a, const fs::path& b, int snapshots = 5) {
+  EXPECT_TRUE(read(a / "energy.csv") == read(b / "energy.csv")) << "energy.csv differs";
+  EXPECT_TRUE(read(a / "particles.xmf") == read(b / "particles.xmf")) << "particles.xmf differs";
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(a / "snapshots")) {
+    const fs::path other = b / "snapshots" / entry.path().filename();
+    ASSERT_TRUE(fs::exists(other)) << other;
+    EXPECT_TRUE(read(entry.path()) == read(other)) << entry.path().filename() << " differs";
+    ++files;
+  }
+  EXPECT_EQ(files, snapshots);
+}
+
 }  // namespace hvi::test
