@@ -111,7 +111,8 @@ int report(const std::string& dir, bool no_run_figures) {
   using hvi::driver::shell_quote;
   std::string cmd = python + " " + shell_quote(source + "/scripts/report.py") + " " +
                     shell_quote(dir) + " --reference " +
-                    shell_quote(source + "/cases/paper/reference");
+                    shell_quote(source + "/cases/paper/reference") + " --hvi " +
+                    shell_quote(std::filesystem::canonical("/proc/self/exe").string());
   if (no_run_figures) cmd += " --no-run-figures";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ExitCode::success : ExitCode::input_error;

@@ -166,8 +166,21 @@ void write_measurements(const Measurements& m, const fs::path& dir) {
   if (m.mirror.x) mirror.insert("x", *m.mirror.x);
   if (m.mirror.y) mirror.insert("y", *m.mirror.y);
   j.insert("mirror_planes", mirror);
-  if (m.front) j.insert("front", sheet_json(*m.front));
-  if (m.rear) j.insert("rear", sheet_json(*m.rear));
+  // With --images, where each top view lies: pixel (0, 0) of the PGM's bottom row at (x0, y0).
+  const auto sheet = [](const SheetMeasurement& s,
+                        const std::optional<analysis::FacesheetResult>& view, const char* file) {
+    toml::table t = sheet_json(s);
+    if (view)
+      t.insert("top_view", toml::table{{"file", file},
+                                       {"x0", view->raster.x0},
+                                       {"y0", view->raster.y0},
+                                       {"pixel", view->raster.cell},
+                                       {"nx", view->raster.nx},
+                                       {"ny", view->raster.ny}});
+    return t;
+  };
+  if (m.front) j.insert("front", sheet(*m.front, m.front_view, "top_view_front.pgm"));
+  if (m.rear) j.insert("rear", sheet(*m.rear, m.rear_view, "top_view_rear.pgm"));
   if (m.taper) j.insert("taper", *m.taper);
   if (m.core_height) j.insert("core_height", *m.core_height);
   if (m.bulge)

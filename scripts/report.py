@@ -18,7 +18,9 @@ import json
 import math
 import pathlib
 import re
+import subprocess
 import sys
+import tempfile
 import tomllib
 
 import h5py
@@ -80,17 +82,53 @@ def last_snapshot(run_dir):
     return files[-1] if files else None
 
 
-def mirrored(x, y, planes):
-    """The points and their images across the run's symmetry planes (measurements.json)."""
-    xs, ys = [x], [y]
-    if "x" in planes:
-        xs, ys = xs + [2 * planes["x"] - a for a in xs], ys + ys
-    if "y" in planes:
-        xs, ys = xs + xs, ys + [2 * planes["y"] - b for b in ys]
-    return np.concatenate(xs), np.concatenate(ys)
+def read_pgm(path):
+    """A binary PGM (P5, 8 bits) as a 2D array, its first row the image's top."""
+    data = path.read_bytes()
+    fields, pos = [], 0
+    while len(fields) < 4:
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        end = pos
+        while not data[end:end + 1].isspace():
+            end += 1
+        fields.append(data[pos:end])
+        pos = end
+    nx, ny = int(fields[1]), int(fields[2])
+    return np.frombuffer(data[pos + 1:pos + 1 + nx * ny], dtype=np.uint8).reshape(ny, nx)
 
 
-def figure_run(run, figures):
+def top_views(run_dir, hvi, scratch):
+    """hvi measure's own top views of the run's facesheets (mirrored across its symmetry planes as
+    the measurement is), and the measurement, written into `scratch`; None if it fails."""
+    done = subprocess.run([hvi, "measure", str(run_dir), "--images", "--out", str(scratch)],
+                          capture_output=True, text=True)
+    if done.returncode != 0 or not (scratch / "measurements.json").exists():
+        return None
+    return json.loads((scratch / "measurements.json").read_text())
+
+
+def draw_top_view(ax, part, meas, scratch):
+    """One facesheet's top view as hvi measure rasters it: material black, the hole grey."""
+    sheet = meas.get(part, {})
+    view = sheet.get("top_view")
+    if not view or not (scratch / view["file"]).exists():
+        ax.set_visible(False)
+        return
+    x0, y0, px = view["x0"] / MM, view["y0"] / MM, view["pixel"] / MM
+    ax.imshow(read_pgm(scratch / view["file"]), cmap="gray", vmin=0, vmax=255, interpolation="nearest",
+              extent=(x0, x0 + view["nx"] * px, y0, y0 + view["ny"] * px))
+    title = f"{part} facesheet (intact)"
+    if sheet.get("perforated"):
+        title += f": D = {sheet.get('D', 0) / MM:.2f} mm, e = {sheet.get('eccentricity', 0):.3f}"
+    else:
+        title += ": not perforated"
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+
+
+def figure_run(run, figures, hvi):
     """Top views of the facesheets and the core's damage seen from the side, for one run."""
     d = run["dir"]
     snap = last_snapshot(d)
@@ -98,33 +136,18 @@ def figure_run(run, figures):
     if snap is None or not info_file.exists():
         return None
     bodies = json.loads(info_file.read_text()).get("bodies", [])
-    meas = json.loads((d / "measurements.json").read_text()) if (d / "measurements.json").exists() else {}
-    planes = meas.get("mirror_planes", {})
+    with tempfile.TemporaryDirectory() as tmp:
+        scratch = pathlib.Path(tmp)
+        meas = top_views(d, hvi, scratch) or {}
+        fig, axes = plt.subplots(1, 3, figsize=(14, 4.6))
+        for ax, part in zip(axes[:2], ("front", "rear")):
+            draw_top_view(ax, part, meas, scratch)
     with h5py.File(snap, "r") as f:
         pos = f["position"][()]
         body = f["body"][()]
         failed = f["failed"][()] if "failed" in f else np.zeros(len(body), dtype=np.int8)
         damage = f["damage"][()] if "damage" in f else failed.astype(float)
     index = {name: k for k, name in enumerate(bodies)}
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.6))
-    for ax, part in zip(axes[:2], ("front", "rear")):
-        name = meas.get(part, {}).get("body", f"panel.{part}")
-        if name not in index:
-            ax.set_visible(False)
-            continue
-        keep = (body == index[name]) & (failed == 0)
-        x, y = mirrored(pos[keep, 0] / MM, pos[keep, 1] / MM, planes)
-        ax.scatter(x, y, s=0.2, c="0.25", linewidths=0, rasterized=True)
-        hole = meas.get(part, {})
-        title = f"{part} facesheet (intact)"
-        if hole.get("perforated"):
-            title += f": D = {hole.get('D', 0) / MM:.2f} mm, e = {hole.get('eccentricity', 0):.3f}"
-        elif part in meas:
-            title += ": not perforated"
-        ax.set_title(title, fontsize=9)
-        ax.set_aspect("equal")
-        ax.set_xlabel("x (mm)")
-        ax.set_ylabel("y (mm)")
     ax = axes[2]
     if "panel.core" in index:
         core = np.flatnonzero(body == index["panel.core"])
@@ -435,6 +458,8 @@ def main():
     parser.add_argument("--reference", type=pathlib.Path,
                         default=pathlib.Path(__file__).resolve().parent.parent / "cases" / "paper" / "reference")
     parser.add_argument("--no-run-figures", action="store_true", help="skip the per-run top views (large runs)")
+    parser.add_argument("--hvi", default=str(pathlib.Path(__file__).resolve().parent.parent / "build" / "hvi"),
+                        help="the hvi program, whose measure draws the top views")
     args = parser.parse_args()
     out = args.dir
     runs = load_runs(out)
@@ -456,7 +481,7 @@ def main():
         md += ["## Top views and core damage (paper Figs. 11, 13)", ""]
         for r in runs:
             if r.get("status") == "finished":
-                png = figure_run(r, figures)
+                png = figure_run(r, figures, args.hvi)
                 if png:
                     md += [f"### {r['run']}", "", f"![{r['run']}](report/{png.name})", ""]
     (out / "report.md").write_text("\n".join(md) + "\n")

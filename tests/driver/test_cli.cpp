@@ -522,3 +522,48 @@ TEST(Cli, FitMergesSeveralTables) {
 }
 
 }  // namespace
+
+namespace {
+
+// The first number after `key` in a JSON text (enough for the flat fields read here).
+double json_number(const std::string& text, const std::string& key, std::size_t from = 0) {
+  const auto at = text.find("\"" + key + "\"", from);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(text.substr(text.find(':', at) + 1));
+}
+
+}  // namespace
+
+// hvi measure --images says where each top view lies, so that a reader (hvi report) draws hvi's
+// own raster in millimetres: the PGM's size is nx x ny, its pixel the hole measurement's, and the
+// raster covers the impact axis.
+TEST(Cli, MeasureImagesSayWhereTheTopViewsLie) {
+  const fs::path run_dir = scratch("top_view_run"), out = scratch("top_view_measure");
+  ASSERT_EQ(
+      run("run " + std::string(HVI_SOURCE_DIR) + "/cases/demo.toml --out " + run_dir.string() +
+          " --threads 2 --set 'run.end_time=1 us' --set 'grid.cell_size=0.8 mm'"),
+      0);
+  ASSERT_EQ(run("measure " + run_dir.string() + " --images --out " + out.string()), 0);
+  const std::string json = read(out / "measurements.json");
+  const auto front = json.find("\"front\"");
+  ASSERT_NE(front, std::string::npos) << json;
+  const auto view = json.find("\"top_view\"", front);
+  ASSERT_NE(view, std::string::npos) << json;
+  const double x0 = json_number(json, "x0", view), y0 = json_number(json, "y0", view);
+  const double pixel = json_number(json, "pixel", view);
+  const int nx = static_cast<int>(json_number(json, "nx", view));
+  const int ny = static_cast<int>(json_number(json, "ny", view));
+  EXPECT_DOUBLE_EQ(pixel, json_number(json, "resolution", front));
+  std::istringstream pgm(read(out / "top_view_front.pgm"));
+  std::string magic;
+  int width = 0, height = 0;
+  pgm >> magic >> width >> height;
+  EXPECT_EQ(magic, "P5");
+  EXPECT_EQ(width, nx);
+  EXPECT_EQ(height, ny);
+  // The demo's axis is x = y = 0, on its two symmetry planes; the mirrored raster spans it.
+  EXPECT_LT(x0, 0.0);
+  EXPECT_GT(x0 + nx * pixel, 0.0);
+  EXPECT_LT(y0, 0.0);
+  EXPECT_GT(y0 + ny * pixel, 0.0);
+}
