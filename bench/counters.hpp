@@ -43,4 +43,21 @@ inline void report(benchmark::State& state, const Measured& m, int steps) {
   for (const auto& e : m.phases.entries()) state.counters[counter_name(e.name)] = e.seconds;
 }
 
+// Times `steps` steps of a solver that `make()` builds, untimed (with any warm-up), in every
+// iteration, and reports the counters of the last.
+template <class Make>
+void time_steps(benchmark::State& state, int steps, Make make) {
+  Measured measured;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto solver = make();
+    state.ResumeTiming();
+    for (int s = 0; s < steps; ++s) solver->step();
+    state.PauseTiming();
+    measured.take(*solver);
+    state.ResumeTiming();
+  }
+  report(state, measured, steps);
+}
+
 }  // namespace hvi::bench

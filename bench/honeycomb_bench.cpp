@@ -80,21 +80,14 @@ void Honeycomb(benchmark::State& state, bool node_average) {
   omp_set_num_threads(threads);
   const auto scene = demo_scene(node_average);
   const int steps = ::steps();
-  hvi::bench::Measured measured;
-  for (auto _ : state) {
-    state.PauseTiming();
+  hvi::bench::time_steps(state, steps, [&] {
     auto solver = hvi::driver::make_solver(scene);
     hvi::mpm::io::read_checkpoint(path, *solver);
     // Warm-up: the first steps after a restore fault in the pages of the grid and caches.
     for (int s = 0; s < warmup_steps; ++s) solver->step();
     solver->timer().clear();
-    state.ResumeTiming();
-    for (int s = 0; s < steps; ++s) solver->step();
-    state.PauseTiming();
-    measured.take(*solver);
-    state.ResumeTiming();
-  }
-  hvi::bench::report(state, measured, steps);
+    return solver;
+  });
 }
 
 void HoneycombParticle(benchmark::State& state) {

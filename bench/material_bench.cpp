@@ -53,19 +53,12 @@ void TaylorBar(benchmark::State& state, const Rung& rung) {
   const auto scene = hvi::scene::load_scene(
       std::string(HVI_SOURCE_DIR) + "/cases/verification/taylor_bar.toml", overrides);
   const int steps = 100;
-  hvi::bench::Measured measured;
-  for (auto _ : state) {
-    state.PauseTiming();
+  hvi::bench::time_steps(state, steps, [&] {
     auto solver = hvi::driver::make_solver(scene);
     hvi::driver::add_bodies(scene, *solver);
     solver->initialise();
-    state.ResumeTiming();
-    for (int k = 0; k < steps; ++k) solver->step();
-    state.PauseTiming();
-    measured.take(*solver);
-    state.ResumeTiming();
-  }
-  hvi::bench::report(state, measured, steps);
+    return solver;
+  });
 }
 
 const bool registered = [] {

@@ -21,17 +21,7 @@ void run_block(benchmark::State& state, hvi::mpm::ShapeFunction shape,
   settings.dilatation = dilatation;
   if (contact) settings.contact = hvi::mpm::ContactSettings{};
   const int steps = 100;
-  hvi::bench::Measured measured;
-  for (auto _ : state) {
-    state.PauseTiming();
-    auto solver = hvi::bench::elastic_block(50, 2, settings);
-    state.ResumeTiming();
-    for (int s = 0; s < steps; ++s) solver->step();
-    state.PauseTiming();
-    measured.take(*solver);
-    state.ResumeTiming();
-  }
-  hvi::bench::report(state, measured, steps);
+  hvi::bench::time_steps(state, steps, [&] { return hvi::bench::elastic_block(50, 2, settings); });
 }
 
 // The reference workload: linear shape functions.
