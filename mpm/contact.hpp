@@ -3,7 +3,7 @@
 // (Bardenhagen, Brackbill and Sulsky 2000; Bardenhagen et al. 2001; for hypervelocity impact
 // Huang, Zhang, Ma and Wang 2011). Standard MPM has one velocity per node: wherever two bodies'
 // points share a node they stick, and a projectile's material jetting sideways at the rim of the
-// crater drags the facesheet outward with it (docs/verification/paper_cases.md). Here the bodies
+// crater drags the facesheet outward with it (docs/log/paper_cases.md). Here the bodies
 // named in the scene's [contact] table (field 1) scatter to a grid of their own; every other body
 // (field 0) to the solver's grid. Each field runs the whole step on its own nodes. Where a node
 // carries mass of both fields, the fields meet:

@@ -8,7 +8,7 @@
 // plane stress (triaxiality sigma* <= 2/3). This is volumetric locking (with cell-crossing noise
 // on top). Al6061's Johnson-Cook failure strain (eq. 3, Table 4) is zero above
 // sigma* = 1.35, so the tension fails the sheet: at 0.4 mm cells the front hole's edge fails
-// at sigma* 1.35-1.6 under 0.7-1.0 GPa of tension (docs/verification/paper_cases.md).
+// at sigma* 1.35-1.6 under 0.7-1.0 GPa of tension (docs/log/paper_cases.md).
 //
 // The remedy is that of B-bar and F-bar elements (Hughes 1980; for MPM Mast et al. 2012, Coombs et
 // al. 2018): fewer volume constraints than points. Each intact point's dilatation is replaced by
