@@ -16,9 +16,9 @@
 #include <string>
 
 #include "bench/counters.hpp"
+#include "cases/run/build_solver.hpp"
+#include "cases/scene/scene.hpp"
 #include "mpm/io/checkpoint.hpp"
-#include "run/build_solver.hpp"
-#include "scene/scene.hpp"
 
 namespace {
 

@@ -7,8 +7,8 @@
 
 #include "bench/counters.hpp"
 
-#include "run/build_solver.hpp"
-#include "scene/scene.hpp"
+#include "cases/run/build_solver.hpp"
+#include "cases/scene/scene.hpp"
 
 namespace {
 

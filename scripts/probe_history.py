@@ -4,7 +4,7 @@ name as a [[measure]], or a probe added to the scene after the run.
 
   probe_history.py RUN --point "X,Y,Z" [--axis x|y|z]      (e.g. --point "0 mm,20 mm,-15.2 mm")
 
-It reads the point as hvi's `kind = "displacement"` measure does (run/probes.hpp), in the
+It reads the point as hvi's `kind = "displacement"` measure does (cases/run/probes.hpp), in the
 undeformed configuration:
   - in a hybrid's far field (the point outside `[far_field.zone]` in plane): the nearest far-field
     node, u = its displacement, from RUN/far_field.pvd and its VTU files;

@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "analysis/table.hpp"
+#include "cases/run/measure_command.hpp"
 #include "mpm/io/hdf5_file.hpp"
-#include "run/measure_command.hpp"
 #include "synthetic.hpp"
 
 namespace hvi::driver {

@@ -10,7 +10,7 @@ import pathlib
 import re
 import sys
 
-LIBRARIES = ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "scene", "run", "cli")
+LIBRARIES = ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cases/scene", "cases/run", "cases/cli")
 
 # Folder -> what its files may include besides their own folder: folders, or a folder's subfolder.
 RULES = {
@@ -20,12 +20,15 @@ RULES = {
     "fem": ("materials",),  # hvi_fem: the laws, never through mpm/
     "coupling": ("materials", "geometry", "mpm", "fem"),  # hvi_coupling
     "analysis": ("mpm/io",),  # hvi_analysis: the snapshots' HDF5 reader, not the solver
-    "scene": ("materials", "mpm", "analysis"),  # hvi_scene: the one scene reader
-    "run": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "scene"),  # hvi_run
-    "cli": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "scene", "run"),  # hvi_cli, hvi
+    "cases/scene": ("materials", "mpm", "analysis"),  # hvi_scene: the one scene reader
+    "cases/run": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cases/scene"),  # hvi_run
+    "cases/cli": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cases/scene", "cases/run"),  # hvi
     "bench": LIBRARIES,
     "tests": LIBRARIES,
 }
+
+# The top-level folders the rules speak of ("cases" holds the rules' "cases/scene", ...).
+TOP_FOLDERS = {folder.split("/")[0] for folder in RULES}
 
 SOURCES = {".hpp", ".cpp", ".h", ".cc", ".cxx", ".hh", ".ipp", ".inl"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*(["<])([^">]+)[">]')
@@ -42,7 +45,7 @@ def target(root, source, delimiter, name):
             except ValueError:
                 return None
     path = pathlib.PurePosixPath(name)
-    if path.parts and path.parts[0] in RULES and (delimiter == '"' or (root / path).is_file()):
+    if path.parts and path.parts[0] in TOP_FOLDERS and (delimiter == '"' or (root / path).is_file()):
         return path.as_posix()
     return None
 
@@ -55,6 +58,18 @@ def is_build_tree(directory):
     return (directory / "CMakeCache.txt").is_file()
 
 
+def units(root):
+    """The folders the rules are about: each top-level folder, or where the rules name its
+    subfolders (cases/scene, ...), those subfolders."""
+    for directory in sorted(p for p in root.iterdir() if p.is_dir()):
+        if directory.name.startswith(".") or is_build_tree(directory):
+            continue
+        if any(folder.startswith(directory.name + "/") for folder in RULES):
+            yield from sorted(p for p in directory.iterdir() if p.is_dir())
+        else:
+            yield directory
+
+
 def main():
     root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).parents[2]).resolve()
     errors = []
@@ -64,13 +79,11 @@ def main():
                 errors.append(f"RULES: {folder} may include {entry}/, which is not a folder of {root}")
     files = includes = 0
     seen = set()
-    for directory in sorted(p for p in root.iterdir() if p.is_dir()):
-        if directory.name.startswith(".") or is_build_tree(directory):
-            continue
+    for directory in units(root):
         sources = sorted(p for p in directory.rglob("*") if p.suffix in SOURCES and p.is_file())
         if not sources:
             continue
-        folder = directory.name
+        folder = directory.relative_to(root).as_posix()
         if folder not in RULES:
             errors.append(f"{folder}/: {len(sources)} C++ files and no rule; add the folder to RULES")
             continue

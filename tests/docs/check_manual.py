@@ -23,6 +23,9 @@ failures = []
 help_cache = {}
 
 
+checked = {}  # the same `hvi check` of the same scene runs once
+
+
 def run(args, cwd):
     return subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=120)
 
@@ -98,9 +101,13 @@ def check_command(page, line, cmd):
             overrides += ["--set", words[i + 1]]
         elif w.startswith("--set="):
             overrides += ["--set", w[len("--set="):]]
+    only = [x for i, w in enumerate(words) if w == "--only" and i + 1 < len(words) for x in ("--only", words[i + 1])]
+    key = ("check" if command in scene_commands else command, target, tuple(overrides), tuple(only))
+    if key in checked:
+        return
+    checked[key] = True
     with tempfile.TemporaryDirectory() as out:
         if command == "sweep":
-            only = [x for i, w in enumerate(words) if w == "--only" and i + 1 < len(words) for x in ("--only", words[i + 1])]
             args = [hvi, "sweep", target, "--out", out, "--list"] + overrides + only
         elif command in scene_commands:
             args = [hvi, "check", target] + overrides

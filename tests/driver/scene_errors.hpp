@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/scene.hpp"
+#include "cases/scene/scene.hpp"
 
 namespace hvi::scene::test {
 

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cli/convergence_command.hpp"
+#include "cases/cli/convergence_command.hpp"
 
 namespace fs = std::filesystem;
 using hvi::driver::richardson;

@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "cases/run/build_solver.hpp"
+#include "cases/scene/scene.hpp"
 #include "mpm/io/hdf5_file.hpp"
 #include "mpm/io/snapshot_writer.hpp"
-#include "run/build_solver.hpp"
-#include "scene/scene.hpp"
 
 namespace hvi {
 namespace {

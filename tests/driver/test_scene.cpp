@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/scene.hpp"
+#include "cases/scene/scene.hpp"
 #include "tests/driver/scene_errors.hpp"
 
 namespace hvi::scene {

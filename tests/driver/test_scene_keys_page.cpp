@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/scene_schema.hpp"
+#include "cases/scene/scene_schema.hpp"
 
 TEST(Manual, SceneKeysPageMatchesTheSchema) {
   std::ifstream in(std::string(HVI_SOURCE_DIR) + "/docs/user/scene_keys.md");

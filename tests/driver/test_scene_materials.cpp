@@ -3,7 +3,7 @@
 // name are located errors; the EOS warning appears when a fast impact meets a material without one.
 #include <gtest/gtest.h>
 
-#include "scene/scene.hpp"
+#include "cases/scene/scene.hpp"
 
 namespace hvi::scene {
 namespace {

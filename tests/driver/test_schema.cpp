@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/schema.hpp"
+#include "cases/scene/schema.hpp"
 
 namespace hvi::scene {
 namespace {

@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
-#include "cli/sweep_command.hpp"
-#include "scene/scene.hpp"
+#include "cases/cli/sweep_command.hpp"
+#include "cases/scene/scene.hpp"
 
 namespace fs = std::filesystem;
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/units.hpp"
+#include "cases/scene/units.hpp"
 
 namespace hvi::scene {
 namespace {

@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
+#include "cases/run/bodies.hpp"
+#include "cases/run/build_solver.hpp"
+#include "cases/run/hybrid.hpp"
+#include "cases/scene/scene.hpp"
 #include "geometry/honeycomb.hpp"
-#include "run/bodies.hpp"
-#include "run/build_solver.hpp"
-#include "run/hybrid.hpp"
-#include "scene/scene.hpp"
 
 namespace hvi {
 namespace {

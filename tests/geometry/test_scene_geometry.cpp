@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include "cases/run/bodies.hpp"
+#include "cases/scene/scene.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/surface.hpp"
-#include "run/bodies.hpp"
-#include "scene/scene.hpp"
 
 namespace hvi {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "run/build_solver.hpp"
-#include "scene/scene.hpp"
+#include "cases/run/build_solver.hpp"
+#include "cases/scene/scene.hpp"
 
 namespace hvi::test {
 

@@ -1,0 +1,23 @@
+#pragma once
+// Turns a scene into a ready solver: grid, boundary conditions, materials, and bodies sampled into
+// material points. This is the one place that knows both geometry/ and mpm/.
+#include <memory>
+
+#include "cases/scene/scene.hpp"
+#include "mpm/solver.hpp"
+
+namespace hvi::driver {
+
+// The scene's background grid.
+mpm::GridGeometry grid_geometry(const scene::Scene& scene);
+
+// The solver with its grid, conditions and materials, but no particles yet.
+std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
+
+// Samples every body into material points (bodies.hpp: a lattice aligned with the grid,
+// particles_per_cell points per cell and axis, finer in refinement zones, thin walls as single
+// layers; volumes summing to the body's exact volume) and sets their velocity. Returns the number
+// of points per body. Throws scene::SceneError for a refused surface file.
+std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver);
+
+}  // namespace hvi::driver

@@ -1,9 +1,0 @@
-#pragma once
-// Every key a scene file may contain, declared once (see scene_schema.cpp).
-#include "scene/schema.hpp"
-
-namespace hvi::scene {
-
-const TableSpec& scene_schema();
-
-}  // namespace hvi::scene
