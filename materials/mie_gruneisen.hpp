@@ -18,11 +18,38 @@
 //    J/kg.
 // Both are continuous with the compression branch at rho0.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
+
+#include "materials/model_parameter.hpp"
 
 namespace hvi::materials {
 
+// What an equation of state p = cold(rho) + B(rho) e needs of a density, computed once for the
+// pressure update and the sound speeds of a point: mu = rho / rho0 - 1, B = dp/de at fixed
+// density, and dp/dmu at fixed e (for Mie-Grüneisen, but for the expansion branch's e term).
+struct EosState {
+  double rho, mu, B, cold, dp_dmu;
+};
+
 struct MieGruneisen {
+  static constexpr const char* name = "mie-gruneisen";
+  static constexpr const char* table = "mie_gruneisen";
+  static constexpr const char* doc = "Mie-Grüneisen EOS parameters (paper eqs. 4-5).";
+  static constexpr const char* summary = "eqs. 4-5";
+  static constexpr std::array<ModelParameter, 3> parameters{{
+      {"c0", "m/s", ModelParameter::Bound::positive, "Bulk sound speed (Us-up intercept)"},
+      {"s", "", ModelParameter::Bound::non_negative, "Us-up slope"},
+      {"gamma0", "", ModelParameter::Bound::non_negative,
+       "Grüneisen parameter at the reference density"},
+  }};
+  static MieGruneisen from(double rho0, std::span<const double, 3> v) {
+    return {rho0, v[0], v[1], v[2]};
+  }
+  std::array<double, 3> values() const { return {c0, s, gamma0}; }
+  double reference_sound_speed() const { return c0; }
+
   double reference_density = 0;  // rho0, kg/m^3
   double c0 = 0;                 // bulk sound speed, m/s
   double s = 0;                  // Us-up slope
@@ -58,13 +85,8 @@ struct MieGruneisen {
     return cold_part(rho) + energy_coefficient(rho) * e;
   }
 
-  // What the EOS needs of a density, computed once for the pressure update and the sound speeds
-  // of a point: p = cold + B e, and dp/dmu at fixed e but for the expansion branch's e term.
-  struct AtDensity {
-    double rho, mu, B, cold, dp_dmu;
-  };
-  AtDensity at(double rho) const {
-    AtDensity a{rho, rho / reference_density - 1.0, energy_coefficient(rho), 0.0, 0.0};
+  EosState at(double rho) const {
+    EosState a{rho, rho / reference_density - 1.0, energy_coefficient(rho), 0.0, 0.0};
     const double mu = a.mu, pH = hugoniot_pressure(mu), slope = hugoniot_slope(mu);
     if (mu < 0.0) {
       a.cold = pH;
@@ -80,7 +102,7 @@ struct MieGruneisen {
 
   // Squared bulk sound speed c^2 = dp/drho|_e + p / rho^2 dp/de|_rho, floored at a tenth of c0^2
   // so that a state in tension keeps a meaningful time step.
-  double bulk_sound_speed_squared(const AtDensity& a, double p) const {
+  double bulk_sound_speed_squared(const EosState& a, double p) const {
     double dp_dmu_e = a.dp_dmu;
     if (a.mu < 0.0) {  // in expansion d(Gamma0 rho e)/dmu = Gamma0 rho0 e, with e recovered from p
       const double e = (p - a.cold) / a.B;

@@ -1,7 +1,8 @@
 #pragma once
-// What hvi measure needs to know about a finished run, read from its scene.resolved.toml (every
-// key present, all values SI): the bodies in snapshot order, their point spacings, the panel
-// dimensions, the materials' sound speeds and the symmetry planes.
+// What hvi measure needs to know about a finished run: the bodies in snapshot order, their point
+// spacings, the panel dimensions, the materials' sound speeds and the symmetry planes. Read from
+// the run's scene.resolved.toml by the one scene reader (load_scene), which need not find the
+// surface files a moved run's scene names.
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -45,7 +46,7 @@ struct RunInfo {
   double spacing(int body, double v0) const;
 };
 
-// Throws std::invalid_argument naming the file and what is missing.
+// Throws std::invalid_argument with the scene reader's located message.
 RunInfo read_run_info(const std::filesystem::path& resolved_scene);
 
 }  // namespace hvi::driver

@@ -274,7 +274,7 @@ void add_warnings(Scene& s) {
   }
 }
 
-Scene resolve(const toml::table& document, const std::string& file) {
+Scene resolve(const toml::table& document, const std::string& file, MeshFiles mesh_files) {
   Validated v = validate(document, scene_schema(), file);
   if (!v.ok()) throw SceneError(v.errors);
   Scene s;
@@ -290,7 +290,7 @@ Scene resolve(const toml::table& document, const std::string& file) {
   read_grid(*r["grid"].as_table(), s, c);
   read_boundaries(*s.resolved["boundary"].as_array(), s, c);
   read_materials(*s.resolved["material"].as_array(), s, c);
-  detail::resolve_mesh_files(*s.resolved["body"].as_array(), file, v, c.errors);
+  detail::resolve_mesh_files(*s.resolved["body"].as_array(), file, v, mesh_files, c.errors);
   read_bodies(*r["body"].as_array(), s, c);
   const toml::table* far_field = r["far_field"].as_table();
   detail::read_panels(*r["panel"].as_array(), s, v, c.errors, far_field);
@@ -428,11 +428,12 @@ std::string apply_resolution(toml::table& document, const std::string& file) {
 }
 
 Scene resolve_document(toml::table document, const std::string& file,
-                       const std::vector<std::string>& overrides) {
+                       const std::vector<std::string>& overrides,
+                       MeshFiles mesh_files = MeshFiles::must_exist) {
   apply_overrides(document, overrides);  // a --set resolution=<name> picks the set
   const std::string choice = apply_resolution(document, file);
   apply_overrides(document, overrides);  // the command line wins over the set
-  Scene scene = resolve(document, file);
+  Scene scene = resolve(document, file, mesh_files);
   if (!choice.empty())
     scene.resolved.insert_or_assign("resolutions", toml::table{{choice, toml::table{}}});
   return scene;
@@ -458,8 +459,9 @@ toml::table read_document(const std::string& path, const std::string& what) {
   return parse_document(buffer.str(), path);
 }
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  return resolve_document(read_document(path), path, overrides);
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                 MeshFiles mesh_files) {
+  return resolve_document(read_document(path), path, overrides, mesh_files);
 }
 
 std::string resolved_text(const Scene& scene) {

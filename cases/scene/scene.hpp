@@ -180,8 +180,13 @@ struct Scene {
   std::vector<MeasureSettings> measures;  // [[measure]]: quantities of interest at the end
 };
 
+// Whether the surface files a scene names must exist. A finished run's resolved scene is read
+// for its bodies' names and sizes (hvi measure), also where the run was moved without its meshes.
+enum class MeshFiles { must_exist, may_be_missing };
+
 // Reads, overrides, validates and resolves a scene file. Throws SceneError.
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                 MeshFiles mesh_files = MeshFiles::must_exist);
 // The same from text (tests), `file` naming it in diagnostics.
 Scene parse_scene(const std::string& text, const std::string& file,
                   const std::vector<std::string>& overrides = {});

@@ -49,7 +49,7 @@ std::optional<BoxShape> clip_of(const toml::table& t) {
 }  // namespace
 
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
-                        std::vector<Diagnostic>& errors) {
+                        MeshFiles mesh_files, std::vector<Diagnostic>& errors) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     toml::table& body = *bodies[i].as_table();
     toml::table* mesh = body["mesh"].as_table();
@@ -59,6 +59,7 @@ void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, cons
     std::error_code ec;
     const fs::path absolute = fs::weakly_canonical(fs::absolute(file), ec);
     if (ec || !fs::is_regular_file(absolute)) {
+      if (mesh_files == MeshFiles::may_be_missing) continue;
       errors.push_back(v.at(element_path("body", body, i) + ".mesh.file",
                             fmt::format("no such file: {}", (ec ? file : absolute).string())));
       continue;

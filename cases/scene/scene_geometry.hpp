@@ -12,14 +12,15 @@
 
 namespace hvi::scene::detail {
 
-// Rewrites each [[body]] mesh.file as an absolute path (relative paths are relative to the folder
-// of `scene_file`) so that the resolved scene, read back from a run directory, finds it too.
 // The index of the [[material]] named `name`, or a message naming the defined ones.
 std::optional<std::size_t> find_material(const Scene& s, const std::string& name,
                                          std::string* problem);
 
+// Rewrites each [[body]] mesh.file as an absolute path (relative paths are relative to the folder
+// of `scene_file`) so that the resolved scene, read back from a run directory, finds it too.
+// A file that does not exist is an error unless `mesh_files` allows it (then it is kept as given).
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
-                        std::vector<Diagnostic>& errors);
+                        MeshFiles mesh_files, std::vector<Diagnostic>& errors);
 MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid);
 // Appends <panel>.front, .core and .rear to s.bodies (after the [[body]] entries). The panel a
 // [far_field] table names (`far_field`, may be null) is material points in its zone only.

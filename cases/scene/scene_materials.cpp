@@ -1,8 +1,10 @@
 // The [[material]] tables read into MaterialSettings: the models a material names, each model's
 // parameters from the table or else from the library material, written back into the resolved
 // scene; a parameter table for a model the material does not name is refused.
+#include <array>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -93,17 +95,9 @@ class MaterialReader {
     h_.johnson_cook = jc;
   }
 
+  // The registered equation of state the material names (materials/equation_of_state.hpp).
   void eos() {
-    auto* mt = model_table("mie_gruneisen", m_.eos == "mie-gruneisen", "eos", "mie-gruneisen");
-    if (!mt) return;
-    ParameterSource p(*mt, path_ + ".mie_gruneisen", m_.library, c_);
-    const auto& lm = L_ ? L_->mie_gruneisen : std::nullopt;
-    materials::MieGruneisen mg;
-    mg.reference_density = h_.density;
-    mg.c0 = p.get("c0", from(lm, [](auto& x) { return x.c0; }));
-    mg.s = p.get("s", from(lm, [](auto& x) { return x.s; }));
-    mg.gamma0 = p.get("gamma0", from(lm, [](auto& x) { return x.gamma0; }));
-    h_.mie_gruneisen = mg;
+    materials::for_each_equation_of_state([&](auto law) { read_eos(law); });
   }
 
   void viscosity() {
@@ -180,6 +174,19 @@ class MaterialReader {
   }
 
  private:
+  template <class Law>
+  void read_eos(std::type_identity<Law>) {
+    auto* table = model_table(Law::table, m_.eos == Law::name, "eos", Law::name);
+    if (!table) return;
+    ParameterSource p(*table, path_ + "." + Law::table, m_.library, c_);
+    const Law* library_law = L_ ? L_->template eos_as<Law>() : nullptr;
+    std::array<double, Law::parameters.size()> values{};
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = p.get(Law::parameters[i].key,
+                        library_law ? std::optional(library_law->values()[i]) : std::nullopt);
+    h_.eos = Law::from(h_.density, values);
+  }
+
   // One parameter table per model: kept (and completed) for the named models, refused for the
   // others when the scene wrote it.
   toml::table* model_table(const char* key, bool named, const char* model_key,

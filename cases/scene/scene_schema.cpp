@@ -1,7 +1,14 @@
 #include "cases/scene/scene_schema.hpp"
 
-#include "cases/scene/measure_settings.hpp"
+#include <string>
+#include <type_traits>
 
+#include <fmt/format.h>
+
+#include "cases/scene/measure_settings.hpp"
+#include "cases/scene/units.hpp"
+
+#include "materials/equation_of_state.hpp"
 #include "mpm/materials/library.hpp"
 
 namespace hvi::scene {
@@ -94,9 +101,30 @@ TableSpec boundary_table() {
   return t;
 }
 
+// A model parameter's check: its unit's dimension and its bound.
+void add_parameter(TableSpec& t, const materials::ModelParameter& p) {
+  using Bound = materials::ModelParameter::Bound;
+  const Range range = p.bound == Bound::positive       ? positive()
+                      : p.bound == Bound::non_negative ? non_negative()
+                                                       : Range{};
+  if (*p.si_unit)
+    t.optional_quantity(p.key, parse_quantity(std::string("1 ") + p.si_unit).dim, range, p.doc);
+  else
+    t.number(p.key, range, std::nullopt, p.doc);
+}
+
+// The parameter table of a registered equation of state (materials/equation_of_state.hpp).
+template <class Law>
+TableSpec law_table(std::type_identity<Law>) {
+  TableSpec t{.name = Law::table, .doc = Law::doc};
+  for (const auto& p : Law::parameters) add_parameter(t, p);
+  return t;
+}
+
 // Each model a material can name has its own parameter table; a parameter not given comes from
 // the `library` entry. Tables of models the material does not name are refused.
-TableSpec material_table(const std::vector<std::string>& library_names) {
+// The models' parameter tables, in the order the material's keys name the models.
+std::vector<TableSpec> model_tables() {
   TableSpec jc{.name = "johnson_cook", .doc = "Johnson-Cook strength parameters (paper eq. 1)."};
   jc.optional_quantity("A", dims::pressure, non_negative(), "Initial yield stress")
       .optional_quantity("B", dims::pressure, non_negative(), "Hardening modulus")
@@ -107,11 +135,6 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
       .optional_quantity("room_temperature", dims::temperature, positive(), "T_room")
       .optional_quantity("reference_strain_rate", dims::rate, positive(),
                          "Reference strain rate (1/s in the paper)");
-  TableSpec mg{.name = "mie_gruneisen", .doc = "Mie-Grüneisen EOS parameters (paper eqs. 4-5)."};
-  mg.optional_quantity("c0", dims::velocity, positive(), "Bulk sound speed (Us-up intercept)")
-      .number("s", non_negative(), std::nullopt, "Us-up slope")
-      .number("gamma0", non_negative(), std::nullopt,
-              "Grüneisen parameter at the reference density");
   TableSpec damage{.name = "johnson_cook_damage",
                    .doc = "Johnson-Cook damage parameters (paper eqs. 2-3)."};
   damage.number("D1", Range{}, std::nullopt, "D1")
@@ -151,8 +174,21 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
                           "D)^2) in compression, h the cell size."};
   viscosity.number("linear", non_negative(), 0.2, "Linear coefficient (AUTODYN's default)")
       .number("quadratic", non_negative(), 1.0, "Quadratic coefficient (AUTODYN's default)");
+  std::vector<TableSpec> tables{jc};
+  materials::for_each_equation_of_state([&](auto law) { tables.push_back(law_table(law)); });
+  for (auto* t : {&damage, &spall, &tuler, &heating, &viscosity, &erosion}) tables.push_back(*t);
+  return tables;
+}
 
+TableSpec material_table(const std::vector<std::string>& library_names) {
   std::vector<std::string> library_choices = library_names;
+  std::vector<std::string> eos_choices{"none"};
+  std::string eos_doc;
+  materials::for_each_equation_of_state([&](auto law) {
+    using Law = typename decltype(law)::type;
+    eos_choices.push_back(Law::name);
+    eos_doc += fmt::format(" or {} ({})", Law::name, Law::summary);
+  });
   TableSpec t{.name = "material",
               .doc =
                   "A material, referenced by bodies through its name. It names the models it "
@@ -174,9 +210,8 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
       .choice("strength", {"elastic", "johnson-cook", "none"}, "elastic",
               "Deviatoric response: elastic (Jaumann stress rate, no yield), johnson-cook (eq. 1, "
               "radial return), or none (hydrodynamic)")
-      .choice(
-          "eos", {"none", "mie-gruneisen"}, "none",
-          "Pressure: none (the elastic bulk modulus E / 3(1 - 2 nu)) or mie-gruneisen (eqs. 4-5)")
+      .choice("eos", eos_choices, "none",
+              "Pressure: none (the elastic bulk modulus E / 3(1 - 2 nu))" + eos_doc)
       .choice("viscosity", {"none", "bulk"}, "none",
               "Artificial bulk viscosity in compression (shocks)")
       .choice("damage", {"none", "johnson-cook"}, "none",
@@ -188,15 +223,8 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
               "Temperature from plastic work (feeds the Johnson-Cook T*)")
       .choice("erosion", {"none", "compression"}, "none",
               "compression: a point crushed below min_volume_ratio loses its stress and moves as a "
-              "point mass (keeps grid-squeezed thin walls from collapsing the time step)")
-      .table(jc)
-      .table(mg)
-      .table(damage)
-      .table(spall)
-      .table(tuler)
-      .table(heating)
-      .table(viscosity)
-      .table(erosion);
+              "point mass (keeps grid-squeezed thin walls from collapsing the time step)");
+  for (const TableSpec& model : model_tables()) t.table(model);
   return t;
 }
 

@@ -85,7 +85,7 @@ double HydroMaterial::sound_speed(double rho_current, double p, bool is_failed) 
   // step for nothing (a particle expanded 3,800-fold alone cut it 30-fold in the demo at 0.2 mm).
   const double rho = is_failed ? std::max(rho_current, models_.density) : rho_current;
   const double bulk2 =
-      models_.mie_gruneisen ? models_.mie_gruneisen->bulk_sound_speed_squared(rho, p) : K_ / rho;
+      models_.eos ? materials::bulk_sound_speed_squared(*models_.eos, rho, p) : K_ / rho;
   return wave_speed(bulk2, rho, is_failed);
 }
 
@@ -146,7 +146,8 @@ std::string HydroMaterial::phase_name() const {
   std::string name = models_.johnson_cook     ? "strength: johnson-cook"
                      : models_.shear_strength ? "strength: elastic"
                                               : "strength: none";
-  name += std::string(" | eos: ") + (models_.mie_gruneisen ? "mie-gruneisen" : "elastic bulk") +
+  name += std::string(" | eos: ") +
+          (models_.eos ? materials::name_of(*models_.eos) : "elastic bulk") +
           (models_.viscosity ? " + viscosity" : "");
   if (models_.heating) name += " | heating: adiabatic";
   if (models_.damage) name += " | damage: johnson-cook";
@@ -169,7 +170,7 @@ StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r,
   const Span s(r);
 #pragma omp parallel for schedule(dynamic, chunk) reduction(max : signal) reduction(min : first_bad)
   for (std::int64_t p = s.begin; p < s.end; ++p) {
-    MieGruneisen::AtDensity eos{};
+    EosState eos{};
     const bool eroded = st.fl && st.fl[p] == failure_state::eroded;  // no stress, volume frozen
     if (!eroded) {
       const VolumeChange V = advance_volume(P, static_cast<std::size_t>(p), dt);
@@ -191,8 +192,8 @@ StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r,
     // update used (the same density).
     const bool intact = !st.fl || st.fl[p] == failure_state::intact;
     const double c =
-        !eroded && intact && models_.mie_gruneisen
-            ? wave_speed(models_.mie_gruneisen->bulk_sound_speed_squared(eos, st.pe[p]), eos.rho,
+        !eroded && intact && models_.eos
+            ? wave_speed(materials::bulk_sound_speed_squared(*models_.eos, eos, st.pe[p]), eos.rho,
                          false) +
                   speed(P, static_cast<std::size_t>(p))
             : signal_speed(P, static_cast<std::size_t>(p), st.pe, st.fl);
@@ -263,13 +264,12 @@ void HydroMaterial::update_deviatoric(Particles& P, std::int64_t p, const State&
   sigma[sym::zz] -= st.pe[p];
 }
 
-// Pressure from the bulk response or the Mie-Grüneisen EOS, with the volumetric and viscous
+// Pressure from the bulk response or the equation of state, with the volumetric and viscous
 // work in the internal energy: e_n+1 = e_n - ((p_n + p_n+1) / 2 + q) dV / m, solved in closed
-// form for the Mie-Grüneisen pressure, which is linear in e.
+// form for p = cold + B e (every registered EOS is linear in e at a fixed density).
 void HydroMaterial::update_pressure(Particles& P, std::int64_t p, const State& st, double dt,
-                                    const VolumeChange& volume,
-                                    MieGruneisen::AtDensity& eos) const {
-  const MieGruneisen* mg = models_.mie_gruneisen ? &*models_.mie_gruneisen : nullptr;
+                                    const VolumeChange& volume, EosState& eos) const {
+  const EquationOfState* law = models_.eos ? &*models_.eos : nullptr;
   const ArtificialViscosity* av = models_.viscosity ? &*models_.viscosity : nullptr;
   const double* L = &P.velocity_gradient[9 * p];
   const double trD = L[0] + L[4] + L[8];
@@ -278,19 +278,20 @@ void HydroMaterial::update_pressure(Particles& P, std::int64_t p, const State& s
   const double rho = m / V;
   const bool is_failed = st.fl && st.fl[p] > 0.0;
   const double p_old = st.pe[p];
-  if (mg) eos = mg->at(rho);  // at the end-of-step density
+  if (law) eos = materials::state_at(*law, rho);  // at the end-of-step density
 
   double q = 0.0;
   if (av && trD < 0.0) {
-    const double c = is_failed || !mg
-                         ? sound_speed(rho, p_old, is_failed)
-                         : wave_speed(mg->bulk_sound_speed_squared(eos, p_old), rho, false);
+    const double c =
+        is_failed || !law
+            ? sound_speed(rho, p_old, is_failed)
+            : wave_speed(materials::bulk_sound_speed_squared(*law, eos, p_old), rho, false);
     q = rho * av->length * (av->linear * c * -trD + av->quadratic * av->length * trD * trD);
     st.wq[p] += -q * dV_m;
   }
   double& e = P.internal_energy[p];
   double p_new;
-  if (mg) {
+  if (law) {
     const double e_star = e - (0.5 * p_old + q) * dV_m;
     p_new = (eos.cold + eos.B * e_star) / (1.0 + 0.5 * eos.B * dV_m);
     if (is_failed) p_new = std::max(p_new, 0.0);

@@ -3,8 +3,8 @@
 // its own phase of the stress update (paper Sec. 2.2):
 //   strength   none (hydrodynamic: no deviatoric stress), elastic (no yield), or Johnson-Cook
 //              (eq. 1) with radial return
-//   pressure   hypoelastic bulk response, or the Mie-Grüneisen EOS (eqs. 4-5) coupled to the
-//              specific internal energy
+//   pressure   hypoelastic bulk response, or an equation of state (materials/equation_of_state.hpp:
+//              the Mie-Grüneisen EOS, eqs. 4-5) coupled to the specific internal energy
 //   viscosity  artificial bulk viscosity q (linear + quadratic) in compression
 //   heating    adiabatic: T = T0 + chi w_p / c_v from the plastic work w_p
 //   damage     Johnson-Cook (eqs. 2-3); a particle fails when D reaches 1
@@ -18,15 +18,17 @@
 // material's points, each model in turn on each point, timed as one phase named after the models.
 #include <optional>
 
+#include "materials/equation_of_state.hpp"
 #include "materials/johnson_cook.hpp"
 #include "materials/johnson_cook_damage.hpp"
-#include "materials/mie_gruneisen.hpp"
 #include "materials/tuler_butcher.hpp"
 #include "mpm/material.hpp"
 
 namespace hvi::mpm {
 
 // The laws the models below are made of (materials/).
+using materials::EosState;
+using materials::EquationOfState;
 using materials::JohnsonCookDamage;
 using materials::JohnsonCookStrength;
 using materials::MieGruneisen;
@@ -65,13 +67,19 @@ struct HydroModels {
   double initial_temperature = 293.0;  // K
   bool shear_strength = true;          // false: hydrodynamic, the deviatoric stress stays zero
   std::optional<JohnsonCookStrength> johnson_cook;
-  std::optional<MieGruneisen> mie_gruneisen;
+  std::optional<EquationOfState> eos;  // none: the elastic bulk response
   std::optional<ArtificialViscosity> viscosity;
   std::optional<AdiabaticHeating> heating;
   std::optional<JohnsonCookDamage> damage;
   std::optional<double> max_principal_stress;  // sigma_max, Pa
   std::optional<TulerButcher> tuler_butcher;
   std::optional<CompressionErosion> erosion;
+
+  // The equation of state if it is a `Law`, else nullptr.
+  template <class Law>
+  const Law* eos_as() const {
+    return eos ? std::get_if<Law>(&*eos) : nullptr;
+  }
 };
 
 class HydroMaterial : public Material {
@@ -103,7 +111,7 @@ class HydroMaterial : public Material {
   void update_deviatoric(Particles& P, std::int64_t p, const State& st, double dt,
                          const VolumeChange& V) const;
   void update_pressure(Particles& P, std::int64_t p, const State& st, double dt,
-                       const VolumeChange& V, MieGruneisen::AtDensity& eos) const;
+                       const VolumeChange& V, EosState& eos) const;
   // sqrt(c_bulk^2 + 4 G / (3 rho)), without the shear wave where there is no strength.
   double wave_speed(double bulk2, double rho, bool failed) const;
   void update_temperature(Particles& P, std::int64_t p, const State& st) const;

@@ -30,7 +30,7 @@ LibraryMaterial paper_aluminium(const char* name, const char* source, double rho
   p.poisson_ratio = 0.33;
   p.initial_temperature = 293;
   p.johnson_cook = paper_aluminium_strength();
-  p.mie_gruneisen = MieGruneisen{p.density, c0, 1.34, 2.0};
+  p.eos = MieGruneisen{p.density, c0, 1.34, 2.0};
   p.damage = damage;
   if (sigma_max) p.max_principal_stress = *sigma_max * MPa;
   m.specific_heat = 875;
@@ -71,7 +71,7 @@ std::vector<LibraryMaterial> make_library() {
     p.youngs_modulus = 124 * GPa;
     p.poisson_ratio = 0.34;
     p.johnson_cook = JohnsonCookStrength{90 * MPa, 292 * MPa, 0.31, 0.025, 1.09, 1356, 293, 1.0};
-    p.mie_gruneisen = MieGruneisen{p.density, 3940, 1.49, 2.02};
+    p.eos = MieGruneisen{p.density, 3940, 1.49, 2.02};
     p.damage = jc_damage(0.54, 4.89, -3.03, 0.014, 1.12);
     m.specific_heat = 383;
     lib.push_back(m);
@@ -86,7 +86,7 @@ std::vector<LibraryMaterial> make_library() {
     p.youngs_modulus = 200 * GPa;
     p.poisson_ratio = 0.29;
     p.johnson_cook = JohnsonCookStrength{792 * MPa, 510 * MPa, 0.26, 0.014, 1.03, 1793, 293, 1.0};
-    p.mie_gruneisen = MieGruneisen{p.density, 4578, 1.33, 1.67};
+    p.eos = MieGruneisen{p.density, 4578, 1.33, 1.67};
     p.damage = jc_damage(0.05, 3.44, -2.12, 0.002, 0.61);
     m.specific_heat = 477;
     lib.push_back(m);

@@ -29,6 +29,8 @@ constexpr double h = 0.1 * mm;  // cell 0.2 mm, 2 points per cell
 const char* scene = R"(
 title = 'synthetic'
 refinement = []
+[run]
+end_time = 1.0e-5
 [grid]
 cell_size = 0.0002
 lower = [-0.005, 0.0, -0.008]
@@ -45,6 +47,8 @@ youngs_modulus = 7.0e10
 poisson_ratio = 0.33
   [material.mie_gruneisen]
   c0 = 5350.0
+  s = 1.34
+  gamma0 = 2.0
 [[body]]
 name = 'projectile'
 material = 'Al'
@@ -53,6 +57,9 @@ velocity = [0.0, 0.0, -3000.0]
   [body.sphere]
   center = [0.0, 0.0, 0.001]
   radius = 0.0005
+  [body.clip]
+  lower = [-0.005, 0.0, -0.008]
+  upper = [0.005, 0.005, 0.002]
 [[panel]]
 name = 'panel'
 front_material = 'Al'
@@ -64,6 +71,12 @@ wall_thickness = 5.0e-5
 cell_diameter = 0.003
 core_height = 0.005
 particles_per_cell = 2
+lower = [-0.004, -0.004]
+upper = [0.004, 0.004]
+top = 0.0
+  [panel.clip]
+  lower = [-0.005, 0.0, -0.008]
+  upper = [0.005, 0.005, 0.002]
 )";
 
 // Bodies: 0 projectile, 1 panel.front, 2 panel.core, 3 panel.rear (the [[body]]s, then the panel).

@@ -38,7 +38,7 @@ johnson_cook = { A = "300 MPa" })"),
   const auto& h = s.materials[0].models;
   EXPECT_DOUBLE_EQ(h.johnson_cook->A, 300e6);  // the scene's value wins
   EXPECT_DOUBLE_EQ(h.johnson_cook->B, 426e6);  // from the library (paper Table 4)
-  EXPECT_DOUBLE_EQ(h.mie_gruneisen->c0, 5350.0);
+  EXPECT_DOUBLE_EQ(h.eos_as<materials::MieGruneisen>()->c0, 5350.0);
   EXPECT_DOUBLE_EQ(h.density, 2770.0);
   EXPECT_FALSE(h.damage.has_value());  // not named: no damage, although the library has D1..D5
   const auto& m = *s.resolved["material"][0].as_table();

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "cases/run/bodies.hpp"
+#include "cases/scene/run_info.hpp"
 #include "cases/scene/scene.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/surface.hpp"
@@ -140,6 +141,23 @@ TEST(SceneGeometry, MistakesAreLocated) {
 
   d = first_error(head);
   EXPECT_NE(d.message.find("at least one [[body]] or [[panel]]"), std::string::npos) << d.text();
+}
+
+// A run moved without its surface files (from a cluster to a workstation) is still read for its
+// bodies (hvi measure), while a scene to run needs them.
+TEST(SceneGeometry, AMovedRunIsReadWithoutItsMeshFiles) {
+  const fs::path dir = fs::path(testing::TempDir()) / "hvi_moved_run";
+  fs::create_directories(dir);
+  fs::remove(dir / "cube.stl");
+  const fs::path file = dir / "scene.resolved.toml";
+  std::ofstream(file) << head + cad;
+  EXPECT_THROW(scene::load_scene(file.string()), scene::SceneError);
+  const scene::Scene s = scene::load_scene(file.string(), {}, scene::MeshFiles::may_be_missing);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  const driver::RunInfo info = driver::read_run_info(file);
+  ASSERT_EQ(info.body("cad"), 0);
+  EXPECT_EQ(info.bodies[0].material, "Al6061");
+  EXPECT_DOUBLE_EQ(info.bodies[0].spacing, 0.25e-3 / s.bodies[0].particles_per_cell);
 }
 
 // tests/geometry/data/open_cube.stl lacks a face: building the body is a scene error at the

@@ -1,10 +1,12 @@
 // Mie-Grüneisen EOS (paper eqs. 4-5, standard form): pressure at given density and energy
 // against the equations written out by hand, continuity of the Hugoniot branches, and the sound
 // speed.
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "materials/equation_of_state.hpp"
 #include "materials/mie_gruneisen.hpp"
 #include "mpm/materials/library.hpp"
 
@@ -12,7 +14,7 @@ namespace hvi::materials {
 namespace {
 
 MieGruneisen al6061() {
-  return *mpm::find_library_material("Al6061")->parameters.mie_gruneisen;
+  return *mpm::find_library_material("Al6061")->parameters.eos_as<MieGruneisen>();
 }
 
 TEST(MieGruneisen, PressureEqualsEquationsFourAndFive) {
@@ -71,6 +73,23 @@ TEST(MieGruneisen, SoundSpeedAtReferenceIsC0) {
   // Compression stiffens the material.
   EXPECT_GT(mg.bulk_sound_speed_squared(1.2 * 2770.0, mg.pressure(1.2 * 2770.0, 0.0)),
             5350.0 * 5350.0);
+}
+
+// Every registered equation of state gives back the parameters it was built from, in the order
+// of its parameter table, and answers through the registry as it does itself.
+TEST(EquationOfState, EveryLawIsBuiltFromItsParameterTable) {
+  for_each_equation_of_state([](auto type) {
+    using Law = typename decltype(type)::type;
+    std::array<double, Law::parameters.size()> values{};
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 1.5 + i;
+    const Law law = Law::from(2700.0, values);
+    EXPECT_EQ(law.values(), values) << Law::name;
+    const EquationOfState eos = law;
+    EXPECT_STREQ(name_of(eos), Law::name);
+    EXPECT_EQ(reference_sound_speed(eos), law.reference_sound_speed());
+    EXPECT_EQ(bulk_sound_speed_squared(eos, 3000.0, 1e9),
+              law.bulk_sound_speed_squared(law.at(3000.0), 1e9));
+  });
 }
 
 }  // namespace

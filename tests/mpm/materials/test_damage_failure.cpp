@@ -20,7 +20,7 @@ using materials::max_principal;
 // plastic strain increments (eq. 2), and the particle fails at D = 1.
 TEST(JohnsonCookDamage, AccumulatesAsEquationTwoAndFails) {
   HydroModels models = find_library_material("Al5052")->parameters;
-  models.mie_gruneisen.reset();
+  models.eos.reset();
   const HydroMaterial material("core", models);
   test::MaterialPoint point(material);
   const JohnsonCookDamage& jd = *models.damage;

@@ -19,7 +19,7 @@ namespace {
 // and the pressure of the bulk response p = K eps. So sigma_xx = -K eps - 2/3 sigma_y.
 TEST(JohnsonCook, UniaxialStrainPathMatchesClosedForm) {
   HydroModels models = find_library_material("Al6061")->parameters;
-  models.mie_gruneisen.reset();
+  models.eos.reset();
   models.damage.reset();
   const HydroMaterial material("al", models);
   const double G = material.shear_modulus(), K = material.bulk_modulus();
@@ -78,7 +78,7 @@ TEST(MieGruneisen, MaterialSolvesEnergyAndPressureTogether) {
     const double m = point.particles.mass[0];
     const double p1 = -trace_sym(point.stress()) / 3.0;
     EXPECT_NEAR(e1, e0 - 0.5 * (p_prev + p1) * (V1 - V0) / m, 1e-9 * std::fabs(e1) + 1e-12);
-    EXPECT_NEAR(p1, models.mie_gruneisen->pressure(m / V1, e1), 1e-10 * p1);
+    EXPECT_NEAR(p1, models.eos_as<MieGruneisen>()->pressure(m / V1, e1), 1e-10 * p1);
     p_prev = p1;
   }
   EXPECT_GT(p_prev, 5e9);  // the path reached a few GPa

@@ -53,10 +53,10 @@ TEST(Library, HoldsThePapersTablesOneAndFour) {
     EXPECT_DOUBLE_EQ(p.density, *value(row, "rho") * 1e3);
     EXPECT_DOUBLE_EQ(p.youngs_modulus, *value(row, "E") * 1e9);
     EXPECT_DOUBLE_EQ(p.poisson_ratio, *value(row, "poisson"));
-    EXPECT_DOUBLE_EQ(p.mie_gruneisen->c0, *value(row, "c0"));
-    EXPECT_DOUBLE_EQ(p.mie_gruneisen->s, *value(row, "s"));
-    EXPECT_DOUBLE_EQ(p.mie_gruneisen->gamma0, *value(row, "gamma0"));
-    EXPECT_DOUBLE_EQ(p.mie_gruneisen->reference_density, p.density);
+    EXPECT_DOUBLE_EQ(p.eos_as<MieGruneisen>()->c0, *value(row, "c0"));
+    EXPECT_DOUBLE_EQ(p.eos_as<MieGruneisen>()->s, *value(row, "s"));
+    EXPECT_DOUBLE_EQ(p.eos_as<MieGruneisen>()->gamma0, *value(row, "gamma0"));
+    EXPECT_DOUBLE_EQ(p.eos_as<MieGruneisen>()->reference_density, p.density);
     EXPECT_DOUBLE_EQ(p.johnson_cook->A, *value(row, "A") * 1e6);
     EXPECT_DOUBLE_EQ(p.johnson_cook->B, *value(row, "B") * 1e6);
     EXPECT_DOUBLE_EQ(p.johnson_cook->n, *value(row, "n"));
