@@ -11,6 +11,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev libfmt-dev libhdf5-dev libeigen3-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libdeal.ii-dev  # the finite-element far field (fem/): deal.II 9.4
+  openmpi-bin libopenmpi-dev  # mpirun -np N hvi sweep (parallel/), and its tests
   libboost-dev  # Boost.Math's students_t (header-only) for hvi fit's significance tests
   python3 python3-numpy python3-h5py python3-matplotlib
 )

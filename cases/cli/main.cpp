@@ -14,6 +14,7 @@
 //   hvi compare RUN_A RUN_B                        two runs' measures and costs side by side
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
 //                                                  a grid of runs, resumable; DIR/sweep.csv
+//   mpirun -np N hvi sweep ...                     the runs handed out among N ranks
 #include <omp.h>
 #include <sys/wait.h>
 
@@ -36,6 +37,7 @@
 #include "cases/scene/scene.hpp"
 #include "cases/scene/scene_schema.hpp"
 #include "hvi_git_revision.hpp"
+#include "parallel/ranks.hpp"
 
 namespace {
 
@@ -252,7 +254,20 @@ int run(Commands& c, const std::string& command_line) {
   return hvi::driver::run_scene(scene, options);
 }
 
-int dispatch(Commands& c, const std::string& command_line) {
+// Under an MPI launcher, the commands but hvi sweep run on one rank: say so before doing anything.
+bool refuse_ranks(const Commands& c, const hvi::parallel::Ranks& ranks) {
+  if (ranks.size() == 1 || *c.sweep_cmd) return false;
+  if (ranks.root())
+    fmt::print(stderr,
+               "hvi: started as {} ranks of an MPI job; only `hvi sweep` shares its work among "
+               "ranks (one run per rank at a time). Start this command without mpirun, or with "
+               "-np 1\n",
+               ranks.size());
+  return true;
+}
+
+int dispatch(Commands& c, const std::string& command_line, const hvi::parallel::Ranks& ranks) {
+  if (refuse_ranks(c, ranks)) return ExitCode::input_error;
   if (*c.keys) {
     fmt::print("{}", hvi::scene::markdown_reference(hvi::scene::scene_schema()));
     return ExitCode::success;
@@ -268,7 +283,7 @@ int dispatch(Commands& c, const std::string& command_line) {
   if (*c.compare_cmd) return hvi::driver::compare_command(c.compare);
   if (*c.sweep_cmd) {
     c.sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
-    return hvi::driver::run_sweep(c.sweep);
+    return hvi::driver::run_sweep(c.sweep, ranks);
   }
   if (*c.geometry) {
     if (c.threads > 0) omp_set_num_threads(c.threads);
@@ -282,6 +297,7 @@ int dispatch(Commands& c, const std::string& command_line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const hvi::parallel::Ranks ranks(argc, argv);  // one rank unless an MPI launcher started hvi
   CLI::App app{"hvi: hypervelocity impact on honeycomb sandwich panels (Material Point Method)"};
   app.set_version_flag("--version", fmt::format("hvi 0.1.0 ({})", hvi::git_revision));
   app.require_subcommand(1);
@@ -292,7 +308,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
+    const int code = ranks.root() ? app.exit(e) : e.get_exit_code();
     return code == 0 ? 0 : ExitCode::input_error;
   }
 
@@ -300,12 +316,12 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 
   try {
-    return dispatch(commands, command_line);
+    return dispatch(commands, command_line, ranks);
   } catch (const hvi::scene::SceneError& e) {
-    print_errors(e);
+    if (ranks.root()) print_errors(e);  // every rank read the same files and found the same
     return ExitCode::input_error;
   } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "hvi: {}\n", e.what());
+    if (ranks.root()) fmt::print(stderr, "hvi: {}\n", e.what());
     return ExitCode::input_error;
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi: {}\n", e.what());

@@ -16,6 +16,7 @@
 #include "cases/run/run.hpp"
 #include "cases/scene/scene.hpp"
 #include "cases/scene/schema.hpp"
+#include "parallel/task_queue.hpp"
 
 namespace hvi::driver {
 
@@ -397,21 +398,30 @@ std::vector<std::string> run_arguments(const SweepOptions& o, const Study& study
   return args;
 }
 
+// The start of a run's follow-up lines on the console. On several ranks the runs' lines
+// interleave, so each names its run.
+std::string under(const SweepOptions& o, const SweepRun& run, int indent = 4) {
+  return std::string(static_cast<std::size_t>(indent), ' ') +
+         (o.ranks > 1 ? run.name + ": " : std::string{});
+}
+
 // Runs (or resumes, or runs on) run k as a child `hvi run` and says how it ended. Returns the
-// child's exit status; `summary` is the run's afterwards, `status_of` marks a run that failed or
-// stopped.
+// child's exit status; `summary` is the run's afterwards, `outcome` says "failed" or "stopped" for
+// a run that did not finish.
 int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Existing& existing,
-            RunSummary& summary, std::map<std::string, std::string>& status_of) {
+            RunSummary& summary, std::string& outcome) {
   const SweepRun& run = study.runs[k];
   const fs::path dir = fs::path(o.out) / run.name;
   const std::optional<double> extend = existing.end_time;
   const bool resume = fs::exists(dir / "checkpoint.h5") && fs::exists(dir / "scene.resolved.toml");
   const std::vector<std::string> args = run_arguments(o, study, run, dir, resume, extend);
-  fmt::print("[{}/{}] {}: {}...\n", k + 1, study.runs.size(), run.name,
+  fmt::print("[{}/{}] {}: {}...{}\n", k + 1, study.runs.size(), run.name,
              !resume                        ? "running"
              : extend && summary.finished() ? fmt::format("running on to {:g} us", *extend * 1e6)
-                                            : "resuming");
-  if (resume && !existing.own_measures.empty()) fmt::print("    {}\n", existing.own_measures);
+                                            : "resuming",
+             o.ranks > 1 ? fmt::format(" (rank {})", o.rank) : "");
+  if (resume && !existing.own_measures.empty())
+    fmt::print("{}{}\n", under(o, run), existing.own_measures);
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   // The log names the run (the base scene's title is the same for every run) and keeps the
@@ -433,20 +443,49 @@ int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Exis
   const ChildLog said = read_child_log(run_log, log_start, study.scene);
   if (status != success || !summary.finished()) {
     const bool stopped = status == success && summary.status == "stopped";
-    status_of[run.name] = stopped ? "stopped" : "failed";
-    fmt::print("    {} after {:.1f} s (exit {}); see {}\n", stopped ? "stopped" : "failed", wall,
-               status, run_log.string());
-    for (const auto& line : said.outcome) fmt::print("      {}\n", line);
+    outcome = stopped ? "stopped" : "failed";
+    fmt::print("{}{} after {:.1f} s (exit {}); see {}\n", under(o, run),
+               stopped ? "stopped" : "failed", wall, status, run_log.string());
+    for (const auto& line : said.outcome) fmt::print("{}{}\n", under(o, run, 6), line);
   } else {
-    fmt::print("    finished in {:.1f} s\n", wall);
+    fmt::print("{}finished in {:.1f} s\n", under(o, run), wall);
   }
-  for (const auto& line : said.warnings) fmt::print("      {}\n", line);
+  for (const auto& line : said.warnings) fmt::print("{}{}\n", under(o, run, 6), line);
   return status;
+}
+
+// Run k of the study on this rank: skipped if done, else run, resumed or run on; then measured.
+// The result's code is the run's exit status, its status what sweep.csv says of an unfinished run.
+parallel::TaskResult sweep_run(const SweepOptions& o, const Study& study, std::size_t k,
+                               const Existing& e) {
+  const SweepRun& run = study.runs[k];
+  const fs::path dir = fs::path(o.out) / run.name;
+  RunSummary summary = read_run_summary(dir);
+  parallel::TaskResult result;
+  if (summary.finished() && !e.end_time) {
+    fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name,
+               summary.wall_seconds);
+    if (!e.own_measures.empty()) fmt::print("{}{}\n", under(o, run), e.own_measures);
+  } else {
+    result.code = run_one(o, study, k, e, summary, result.status);
+    if (stopped_by_signal(result.code)) return result;
+    if (result.code == success && !summary.finished()) result.code = run_failed;
+  }
+  if (summary.finished() && !fs::exists(dir / "measurements.csv")) {
+    const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");
+    if (status != success)
+      fmt::print("{}not measured (see {})\n", under(o, run), (dir / "measure.log").string());
+  }
+  std::fflush(stdout);
+  return result;
 }
 
 }  // namespace
 
-int run_sweep(const SweepOptions& o) {
+int run_sweep(const SweepOptions& options, const parallel::Ranks& ranks) {
+  SweepOptions o = options;
+  o.rank = ranks.rank();
+  o.ranks = ranks.size();
   Study study = load_study(o.study, o.overrides);
   const Study whole = study;  // sweep.csv keeps the rows of runs made by earlier `--only`s
   auto selected_runs = select_runs(study, o);
@@ -454,11 +493,14 @@ int run_sweep(const SweepOptions& o) {
   study.runs = std::move(*selected_runs);
   std::map<std::string, Existing> existing;
   if (const int code = check_runs(study, o, existing); code != success) return code;
-  fmt::print("hvi sweep: {}{} — {} runs of {}\n", o.study,
-             study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(), study.scene);
+  if (ranks.root())
+    fmt::print("hvi sweep: {}{} — {} runs of {}{}\n", o.study,
+               study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(), study.scene,
+               ranks.size() > 1 ? fmt::format(", handed out to {} ranks", ranks.size()) : "");
   if (o.list) {
-    for (const auto& run : study.runs)
-      fmt::print("  {}: {}\n", run.name, fmt::join(run.overrides, " "));
+    if (ranks.root())
+      for (const auto& run : study.runs)
+        fmt::print("  {}: {}\n", run.name, fmt::join(run.overrides, " "));
     return success;
   }
   fs::create_directories(o.out);
@@ -466,32 +508,28 @@ int run_sweep(const SweepOptions& o) {
   std::vector<std::string> selected;
   for (const auto& run : study.runs) selected.push_back(run.name);
   int code = success;
-  for (std::size_t k = 0; k < study.runs.size(); ++k) {
-    const SweepRun& run = study.runs[k];
-    const fs::path dir = fs::path(o.out) / run.name;
-    RunSummary summary = read_run_summary(dir);
-    const Existing& e = existing[run.name];
-    if (summary.finished() && !e.end_time) {
-      fmt::print("[{}/{}] {}: done ({:.1f} s)\n", k + 1, study.runs.size(), run.name,
-                 summary.wall_seconds);
-      if (!e.own_measures.empty()) fmt::print("    {}\n", e.own_measures);
-    } else {
-      const int status = run_one(o, study, k, e, summary, status_of);
-      if (stopped_by_signal(status)) {
-        fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n",
-                   run.name);
+  std::optional<std::string> interrupted;
+  parallel::share_tasks(
+      ranks, study.runs.size(),
+      [&](std::size_t k) { return sweep_run(o, study, k, existing.at(study.runs[k].name)); },
+      [&](std::size_t k, const parallel::TaskResult& r) {
+        const std::string& name = study.runs[k].name;
+        if (!r.status.empty()) status_of[name] = r.status;
+        if (stopped_by_signal(r.code)) {
+          interrupted = interrupted.value_or(name);
+          code = r.code;
+        } else if (r.code != success && code == success) {
+          code = run_failed;
+        }
+        // After every run: the table is current even if the sweep is stopped.
         write_table(whole, selected, o.out, status_of);
-        return status;
-      }
-      if (status != success || !summary.finished()) code = run_failed;
-    }
-    if (summary.finished() && !fs::exists(dir / "measurements.csv")) {
-      const int status = run_child(o.hvi, {"measure", dir.string()}, dir / "measure.log");
-      if (status != success)
-        fmt::print("    not measured (see {})\n", (dir / "measure.log").string());
-    }
-    write_table(whole, selected, o.out,
-                status_of);  // after every run: the table is current even if stopped
+        return !interrupted;
+      });
+  if (!ranks.root()) return success;  // rank 0 reports for the job
+  if (interrupted) {
+    fmt::print("hvi sweep: interrupted in {}; run the same command again to resume\n",
+               *interrupted);
+    return code;
   }
   fmt::print("hvi sweep: {} (one row per run); hvi fit {} --form front|rear|taper; hvi report {}\n",
              (fs::path(o.out) / "sweep.csv").string(), o.out, o.out);

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "parallel/ranks.hpp"
+
 namespace hvi::driver {
 
 struct SweepOptions {
@@ -32,9 +34,12 @@ struct SweepOptions {
   std::vector<std::string> only;       // run only these (names); empty: all
   bool list = false;                   // print the runs and exit
   std::string hvi;                     // this executable
+  int rank = 0, ranks = 1;             // of the MPI job (set by run_sweep)
 };
 
-int run_sweep(const SweepOptions& options);
+// With several ranks (mpirun -np N hvi sweep ...), rank 0 hands the runs out one at a time to the
+// first free rank and writes sweep.csv; each rank runs one run at a time with its threads.
+int run_sweep(const SweepOptions& options, const parallel::Ranks& ranks);
 
 // One study's runs, resolved (for tests).
 struct SweepRun {

@@ -55,6 +55,8 @@ def command_lines(text):
         for k, raw in enumerate(joined.split("\n")):
             cmd = raw.split(" #")[0].strip()
             cmd = re.sub(r"^\$ ", "", cmd)
+            # A launcher's part (mpirun -np 4, srun --cpu-bind=cores) is the launcher's to check.
+            cmd = re.sub(r"^(mpirun|mpiexec|srun)( +-\S+( +[0-9]+)?)* +", "", cmd)
             if re.match(r"^(build/)?hvi ", cmd):
                 yield cmd, line + k
     prose = re.sub(r"^```.*?^```", "", text, flags=re.M | re.S)

@@ -102,6 +102,43 @@ TEST(Sweep, TheCommandLineOverridesARunsOwnSetButMayNotFixAnAxis) {
   }
 }
 
+// mpirun -np 2 hvi sweep: the runs are handed out between the ranks, and sweep.csv holds what one
+// rank's sweep writes, but for the runs' own wall times and memory peaks.
+TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
+  const std::string mpirun = HVI_MPIEXEC;
+  if (mpirun.empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const fs::path one = fs::path(testing::TempDir()) / "hvi_sweep_one_rank";
+  const fs::path two = fs::path(testing::TempDir()) / "hvi_sweep_two_ranks";
+  fs::remove_all(one);
+  fs::remove_all(two);
+  const std::string study = data + "drift_study.toml";
+  const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_ranks.log";
+  ASSERT_EQ(run("sweep " + study + " --out " + one.string() + " --threads 1", log), 0) << read(log);
+  const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                              mpirun + " --oversubscribe -np 2 " + hvi + " sweep " + study +
+                              " --out " + two.string() + " --threads 1 > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read(log);
+  const std::string console = read(log);
+  EXPECT_NE(console.find("handed out to 2 ranks"), std::string::npos) << console;
+  EXPECT_NE(console.find("(rank 1)"), std::string::npos) << console;  // rank 1 ran some
+  auto a = table(one / "sweep.csv"), b = table(two / "sweep.csv");
+  ASSERT_EQ(a.size(), 5u);
+  for (auto* rows : {&a, &b})
+    for (auto& [name, row] : *rows)
+      for (const char* own : {"wall_seconds", "peak_memory_bytes"}) row.erase(own);
+  EXPECT_EQ(a, b);
+
+  // Any other command on several ranks is refused before it does anything.
+  const std::string check = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + mpirun +
+                            " --oversubscribe -np 2 " + hvi + " check " + data + "drift.toml > " +
+                            log.string() + " 2>&1";
+  const int refused = std::system(check.c_str());
+  EXPECT_TRUE(WIFEXITED(refused) && WEXITSTATUS(refused) == 2) << read(log);
+  EXPECT_NE(read(log).find("only `hvi sweep` shares its work among ranks"), std::string::npos)
+      << read(log);
+}
+
 TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep";
   fs::remove_all(out);
