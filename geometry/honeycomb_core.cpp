@@ -15,6 +15,7 @@
 #include <iterator>
 #include <limits>
 #include <list>
+#include <stdexcept>
 
 #include "geometry/honeycomb.hpp"
 #include "geometry/primitives.hpp"
@@ -123,6 +124,10 @@ HoneycombCore::HoneycombCore(const HoneycombPanel& panel, const Bounds& region)
   plan_area_ = CGAL::to_double(CGAL::exact(area));
 
   // Triangulate the plan: every boundary is a constraint; the region is the odd nesting levels.
+  if (parts.empty() && inner.empty())
+    throw std::invalid_argument(
+        "the honeycomb core has no wall inside its region (its cells are larger than the region "
+        "the panel or its clip leaves)");
   Cdt cdt;
   auto insert = [&](const Polygon& p) {
     cdt.insert_constraint(p.vertices_begin(), p.vertices_end(), true);

@@ -8,9 +8,15 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "geometry/cgal_mesh.hpp"
 #include "geometry/surface.hpp"
@@ -18,15 +24,96 @@
 namespace hvi::geometry {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& path, const std::string& why) {
+  throw SurfaceError("cannot read '" + path + "': " + why);
+}
+
+// The counts an OFF or PLY header declares, checked against what the file can hold before the
+// reader allocates for them: an ASCII vertex takes at least 6 bytes ("0 0 0\n"), a face 4.
+void check_counts(const std::string& path, long long vertices, long long faces,
+                  std::uintmax_t bytes) {
+  if (vertices < 0 || faces < 0)
+    refuse(path, fmt::format("the header declares {} vertices and {} faces", vertices, faces));
+  if (static_cast<long double>(vertices) * 6 + static_cast<long double>(faces) * 4 >
+      static_cast<long double>(bytes))
+    refuse(path, fmt::format("the header declares {} vertices and {} faces, more than its {} "
+                             "bytes can hold (a truncated or damaged file)",
+                             vertices, faces, bytes));
+}
+
+// OFF: the plain "OFF" header (or COFF, NOFF, CNOFF) and its counts; texture and binary variants
+// are refused (CGAL's scanner of the "ST" variant reads past its buffer).
+void check_off_header(const std::string& path, std::istream& in, std::uintmax_t bytes) {
+  std::string magic;
+  in >> magic;
+  if (magic != "OFF" && magic != "COFF" && magic != "NOFF" && magic != "CNOFF")
+    refuse(path, fmt::format("an OFF file starts with OFF (or COFF, NOFF, CNOFF), not '{}'",
+                             magic.substr(0, 16)));
+  long long vertices = 0, faces = 0;
+  if (!(in >> vertices >> faces)) refuse(path, "no vertex and face counts after OFF");
+  check_counts(path, vertices, faces, bytes);
+}
+
+// PLY: the counts of its "element vertex" and "element face" lines.
+void check_ply_header(const std::string& path, std::istream& in, std::uintmax_t bytes) {
+  long long vertices = 0, faces = 0;
+  std::string line;
+  for (int n = 0; std::getline(in, line) && line.rfind("end_header", 0) != 0; ++n) {
+    if (n > 1000) refuse(path, "no end_header in the first 1000 lines");
+    std::istringstream words(line);
+    std::string keyword, element;
+    long long count = 0;
+    if (words >> keyword >> element >> count && keyword == "element")
+      (element == "vertex" ? vertices : faces) += count;
+  }
+  check_counts(path, vertices, faces, bytes);
+}
+
+// What a reader must not meet: a file that is not a regular file, and OFF or PLY headers that
+// declare more than the file holds.
+void check_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) refuse(path, "not a regular file");
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  std::ifstream in(path, std::ios::binary);
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".off") check_off_header(path, in, bytes);
+  if (extension == ".ply") check_ply_header(path, in, bytes);
+}
+
+}  // namespace
 
 TriangleMesh read_surface(const std::string& path, const Placement& placement) {
+  check_file(path);
   std::vector<cgal::Point3> points;
   std::vector<std::vector<std::size_t>> polygons;
-  if (!CGAL::IO::read_polygon_soup(path, points, polygons) || polygons.empty())
+  bool read = false;
+  try {
+    read = CGAL::IO::read_polygon_soup(path, points, polygons);
+  } catch (const std::bad_alloc&) {
+    refuse(path, "a count in it is larger than the file can hold (a damaged file)");
+  } catch (const std::length_error&) {
+    refuse(path, "a count in it is larger than the file can hold (a damaged file)");
+  }
+  if (!read || polygons.empty())
     throw SurfaceError(
         "cannot read '" + path +
         "' as a triangle surface (STL ASCII or binary, OFF, OBJ, PLY; the format is taken from the "
         "file extension)");
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!(std::isfinite(points[k].x()) && std::isfinite(points[k].y()) &&
+          std::isfinite(points[k].z())))
+      refuse(path, fmt::format("vertex {} has a coordinate that is not a finite number", k));
+  for (const auto& polygon : polygons)
+    for (const std::size_t v : polygon)
+      if (v >= points.size())
+        refuse(path, fmt::format("a face names vertex {} of {}", v, points.size()));
   // STL stores each triangle's corners separately; OFF/OBJ/PLY may repeat points too.
   PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
   const Point& r = placement.rotate;

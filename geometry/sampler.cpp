@@ -29,8 +29,16 @@ PointSet sample_lattice_cells(const Solid& solid, const SamplingSettings& s, std
   const Bounds b = solid.bounds();
   long lo[3], hi[3];  // coarse cells [anchor + i h, anchor + (i + 1) h) that overlap the bounds
   for (int d = 0; d < 3; ++d) {
-    lo[d] = static_cast<long>(std::floor((b.lower[d] - s.anchor[d]) / h));
-    hi[d] = static_cast<long>(std::ceil((b.upper[d] - s.anchor[d]) / h)) - 1;
+    const double from = std::floor((b.lower[d] - s.anchor[d]) / h);
+    const double to = std::ceil((b.upper[d] - s.anchor[d]) / h) - 1;
+    if (!(to >= from)) return {};  // empty (or NaN) bounds: no points
+    // A lattice index must fit its integer: bounds this far out are a mistake, not a body.
+    if (!(std::abs(from) < 1e15 && std::abs(to) < 1e15))
+      throw std::invalid_argument(
+          "a solid reaches 1e15 lattice cells from the grid's origin: its bounds (or clip) are "
+          "not finite or far outside the grid");
+    lo[d] = static_cast<long>(from);
+    hi[d] = static_cast<long>(to);
   }
   const long layers = std::max(0L, hi[2] - lo[2] + 1);
   std::vector<PointSet> layer(static_cast<std::size_t>(layers));

@@ -18,8 +18,10 @@
 #include <omp.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include <fmt/format.h>
@@ -49,11 +51,35 @@ void print_errors(const hvi::scene::SceneError& e) {
              e.diagnostics().size(), e.diagnostics().size() == 1 ? "" : "s");
 }
 
-int check(const std::string& path, const std::vector<std::string>& overrides) {
+// "16GB", "512 MiB", "2e9": bytes; throws std::invalid_argument naming the option.
+double memory_bytes(const std::string& text) {
+  if (text.empty()) return 0;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  std::string unit = text.substr(used);
+  unit.erase(0, unit.find_first_not_of(' '));
+  static const std::map<std::string, double> units{
+      {"", 1},      {"B", 1},       {"kB", 1e3},      {"MB", 1e6},      {"GB", 1e9},
+      {"TB", 1e12}, {"KiB", 1024.}, {"MiB", 1 << 20}, {"GiB", 1 << 30}, {"TiB", 1099511627776.}};
+  const auto u = units.find(unit);
+  if (used == 0 || u == units.end() || !(value > 0) || !std::isfinite(value))
+    throw std::invalid_argument(
+        fmt::format("--max-memory {}: expected a positive size such as 16GB or 512MiB", text));
+  return value * u->second;
+}
+
+int check(const std::string& path, const std::vector<std::string>& overrides,
+          const std::string& max_memory) {
   const hvi::scene::Scene scene = hvi::scene::load_scene(path, overrides);
+  const double memory_limit = memory_bytes(max_memory);
   auto solver = hvi::driver::make_solver(scene);
   const auto hybrid = hvi::driver::make_hybrid(scene, *solver);
-  const auto counts = hvi::driver::add_bodies(scene, *solver);
+  const auto counts = hvi::driver::add_bodies(scene, *solver, memory_limit);
   solver->initialise();
   if (hybrid) hybrid->record_reference_positions(*solver);
   fmt::print("{}: valid{}\n", path, scene.title.empty() ? "" : " — " + scene.title);
@@ -128,6 +154,7 @@ struct Commands {
   std::string scene_path, out_dir, resume_dir;
   std::vector<std::string> overrides;
   int threads = 0;
+  std::string max_memory;  // "16 GB"; empty: the memory the machine has available
   bool overwrite = false;
   hvi::driver::ConvergenceOptions convergence;
   hvi::driver::SweepOptions sweep;
@@ -143,6 +170,9 @@ void add_scene_commands(CLI::App& app, Commands& c) {
   c.check = app.add_subcommand("check", "Validate a scene and print what it will simulate");
   c.check->add_option("scene", c.scene_path, "Scene file (TOML)")->required();
   c.check->add_option("--set", c.overrides, "Override a scene key: key.path=value (repeatable)");
+  c.check->add_option("--max-memory", c.max_memory,
+                      "Refuse bodies whose points would need more (e.g. 16GB; default: the "
+                      "memory this machine has available)");
 
   c.run = app.add_subcommand("run", "Run a scene");
   auto* scene_opt = c.run->add_option("scene", c.scene_path, "Scene file (TOML)");
@@ -152,6 +182,9 @@ void add_scene_commands(CLI::App& app, Commands& c) {
   c.run->add_option("--threads", c.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   c.run->add_option("--set", c.overrides, "Override a scene key: key.path=value (repeatable)");
+  c.run->add_option("--max-memory", c.max_memory,
+                    "Refuse bodies whose points would need more (e.g. 16GB; default: the memory "
+                    "this machine has available)");
   c.run->add_flag("--overwrite", c.overwrite, "Replace a previous run in the output directory");
   scene_opt->excludes(resume_opt);
   out_opt->excludes(resume_opt);
@@ -238,6 +271,7 @@ int run(Commands& c, const std::string& command_line) {
   hvi::driver::RunOptions options;
   options.threads = c.threads;
   options.overwrite = c.overwrite;
+  options.max_memory = memory_bytes(c.max_memory);
   options.command_line = command_line;
   if (!c.resume_dir.empty()) {
     options.resume = true;
@@ -272,7 +306,7 @@ int dispatch(Commands& c, const std::string& command_line, const hvi::parallel::
     fmt::print("{}", hvi::scene::markdown_reference(hvi::scene::scene_schema()));
     return ExitCode::success;
   }
-  if (*c.check) return check(c.scene_path, c.overrides);
+  if (*c.check) return check(c.scene_path, c.overrides, c.max_memory);
   if (*c.measure->command) return hvi::driver::measure_command(c.measure->options());
   if (*c.fit->command) return hvi::driver::fit_command(c.fit->options);
   if (*c.convergence_cmd) {

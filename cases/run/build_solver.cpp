@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "cases/run/bodies.hpp"
+#include "cases/run/memory_estimate.hpp"
 #include "mpm/elastic.hpp"
 #include "mpm/materials/hydro_material.hpp"
 
@@ -68,13 +69,18 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
                                        std::move(body_names), std::move(boundaries));
 }
 
-std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver) {
+std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver,
+                                    double max_memory) {
   mpm::Particles& P = solver.particles();
+  std::vector<std::unique_ptr<geometry::Solid>> solids;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) solids.push_back(make_body_solid(scene, b));
+  check_memory(scene, solids, max_memory);  // before any point is sampled
   std::vector<std::size_t> counts;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
     const double density = solver.materials()[body.material]->reference_density();
-    const geometry::PointSet points = sample_body(scene, b, *make_body_solid(scene, b));
+    const geometry::PointSet points = sample_body(scene, b, *solids[b]);
+    solids[b].reset();
     const std::size_t first = P.size(), n = points.size();
     P.resize(first + n);
     // GIMP particle domains: half the sampling spacing per axis (a thin-wall point is wide along

@@ -18,6 +18,9 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
 // particles_per_cell points per cell and axis, finer in refinement zones, thin walls as single
 // layers; volumes summing to the body's exact volume) and sets their velocity. Returns the number
 // of points per body. Throws scene::SceneError for a refused surface file.
-std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver);
+// Refuses (std::invalid_argument) bodies whose points would need more than `max_memory` bytes
+// (0: the memory the machine has available) before sampling any (memory_estimate.hpp).
+std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver,
+                                    double max_memory = 0);
 
 }  // namespace hvi::driver

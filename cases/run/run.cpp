@@ -11,6 +11,9 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -95,6 +98,7 @@ class SceneRun {
   void measure_holes();
   void write_snapshots();
   void checkpoint(double wall);
+  void check_same_state() const;
   void print_result(int code, double rate, std::size_t peak_memory, const mpm::EnergyReport& e,
                     double balance) const;
   void print_far_field() const;
@@ -156,8 +160,9 @@ int SceneRun::build() {
     hybrid_ = make_hybrid(scene_, *solver_);
     if (options_.resume) {
       extras_ = mpm::io::read_checkpoint(dir_ / "checkpoint.h5", *solver_);
+      check_same_state();
     } else {
-      counts_ = add_bodies(scene_, *solver_);
+      counts_ = add_bodies(scene_, *solver_, options_.max_memory);
       solver_->initialise();
       if (hybrid_) hybrid_->record_reference_positions(*solver_);
     }
@@ -406,6 +411,26 @@ void SceneRun::write_snapshots() {
   if (hybrid_) hybrid_->write_snapshot(dir_, solver_->step_count(), solver_->time());
 }
 
+// The scene's state hash in two halves of 32 bits: the checkpoint's extras are doubles.
+static std::pair<double, double> hash_halves(std::uint64_t h) {
+  return {static_cast<double>(h >> 32), static_cast<double>(h & 0xffffffffull)};
+}
+
+// A resumed run goes on with the physics its checkpoint was computed with: a scene changed in any
+// key but when to stop, what to write and what to measure is refused before anything is written.
+// (A checkpoint from before the hash was kept is trusted.)
+void SceneRun::check_same_state() const {
+  const auto hi = extras_.find("scene_state_hi"), lo = extras_.find("scene_state_lo");
+  if (hi == extras_.end() || lo == extras_.end()) return;
+  const auto [h, l] = hash_halves(scene::state_hash(scene_));
+  if (hi->second == h && lo->second == l) return;
+  throw std::invalid_argument(fmt::format(
+      "{}: the scene differs from the one its checkpoint was computed with (in scene.resolved.toml "
+      "or a --set): resuming would change the physics mid-run. Only {} may change on resume; "
+      "start a new run for the rest",
+      dir_.string(), scene::resumable_keys));
+}
+
 // wall: this invocation's time-loop seconds up to the state written.
 void SceneRun::checkpoint(double wall) {
   auto t = solver_->timer().scope("write checkpoint");
@@ -415,6 +440,8 @@ void SceneRun::checkpoint(double wall) {
                                    {"initial_energy", initial_energy_},
                                    {"peak_pressure", record_.peak_pressure}};
   if (!std::isnan(earlier_wall_)) extras["wall_seconds"] = earlier_wall_ + wall;
+  std::tie(extras["scene_state_hi"], extras["scene_state_lo"]) =
+      hash_halves(scene::state_hash(scene_));
   probes_->save(extras);
   if (hybrid_) hybrid_->save(extras);
   mpm::io::write_checkpoint(dir_ / "checkpoint.h5", *solver_, extras);

@@ -17,6 +17,7 @@ struct RunOptions {
   bool overwrite = false;    // replace a previous run in `out`
   bool resume = false;       // continue the run in `out` from its checkpoint
   std::string command_line;  // recorded in run.json
+  double max_memory = 0;     // bytes the bodies' points may take; 0: what the machine has free
 };
 
 // Exit codes of `hvi run`: 128 + the signal for a run stopped by SIGINT (Ctrl-C) or SIGTERM (what a

@@ -188,6 +188,9 @@ void read_bodies(const toml::array& array, Scene& s, Checker& c) {
     b.origin = c.v.at(path + (t["mesh"].as_table() ? ".mesh.file" : ""), "");
     if (const auto* cl = t["clip"].as_table())
       b.clip = BoxShape{vec3(*cl, "lower"), vec3(*cl, "upper")};
+    if (b.clip)
+      if (const std::string problem = detail::clip_problem(*b.clip, s.grid); !problem.empty())
+        c.error(path + ".clip", problem);
     auto box = bounds_of(b);
     if (b.clip)
       for (int d = 0; d < 3; ++d) {
@@ -322,7 +325,51 @@ Scene resolve(const toml::table& document, const std::string& file, MeshFiles me
   return s;
 }
 
+// hvi's keys nest a few levels (material.johnson_cook.A); a key or table header nested deeper
+// than this is refused before parsing, whose recursion a key thousands of levels deep overflows.
+constexpr int max_key_depth = 32;
+
+// The dots between the parts of the key (or table header) a line begins with, outside quotes.
+int key_depth(std::string_view line) {
+  const auto first = line.find_first_not_of(" \t");
+  if (first == std::string_view::npos || line[first] == '#') return 0;
+  int dots = 0;
+  char quote = 0;
+  for (std::size_t i = first; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quote) {
+      if (ch == quote) quote = 0;
+    } else if (ch == '"' || ch == '\'') {
+      quote = ch;
+    } else if (ch == '.') {
+      ++dots;
+    } else if (ch == '=' || (ch == ']' && line[first] == '[')) {
+      break;
+    }
+  }
+  return dots;
+}
+
+void check_nesting(const std::string& text, const std::string& file) {
+  std::size_t start = 0;
+  for (int line = 1; start <= text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (const int depth = key_depth(std::string_view(text).substr(start, end - start));
+        depth >= max_key_depth) {
+      Diagnostic d;
+      d.file = file;
+      d.line = line;
+      d.column = 1;
+      d.message = fmt::format("a key nested {} levels deep; scene keys nest at most {}", depth + 1,
+                              max_key_depth);
+      throw SceneError({d});
+    }
+    start = end + 1;
+  }
+}
+
 toml::table parse_document(const std::string& text, const std::string& file) {
+  check_nesting(text, file);
   try {
     return toml::parse(std::string_view(text), std::string_view(file));
   } catch (const toml::parse_error& e) {
@@ -462,6 +509,19 @@ toml::table read_document(const std::string& path, const std::string& what) {
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
                  MeshFiles mesh_files) {
   return resolve_document(read_document(path), path, overrides, mesh_files);
+}
+
+std::uint64_t state_hash(const Scene& scene) {
+  toml::table state = scene.resolved;
+  for (const char* key : {"title", "output", "measure", "resolution", "resolutions"})
+    state.erase(key);
+  if (toml::table* run = state["run"].as_table())
+    for (const char* key : {"end_time", "max_steps", "max_energy_growth"}) run->erase(key);
+  std::stringstream text;
+  text << toml::toml_formatter(state);
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const unsigned char c : text.str()) hash = (hash ^ c) * 1099511628211ull;
+  return hash;
 }
 
 std::string resolved_text(const Scene& scene) {

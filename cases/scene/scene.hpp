@@ -5,6 +5,7 @@
 // exists, a boundary plane lies on grid nodes, bodies lie inside the grid) and fills the defaults
 // that depend on other keys. Any problem throws SceneError with every diagnostic.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -197,5 +198,13 @@ toml::table read_document(const std::string& path, const std::string& what = "sc
 
 // The resolved scene as TOML text (SI values), with a header naming the units.
 std::string resolved_text(const Scene& scene);
+
+// The keys that may change when a run resumes from its checkpoint: none of them changes the state
+// computed so far (when to stop, what to write, what to measure at the end).
+inline constexpr const char* resumable_keys =
+    "title, run.end_time, run.max_steps, run.max_energy_growth, [output], [[measure]]";
+// A hash (64-bit FNV-1a) of the resolved scene without the keys above: equal for two scenes
+// that compute the same state.
+std::uint64_t state_hash(const Scene& scene);
 
 }  // namespace hvi::scene

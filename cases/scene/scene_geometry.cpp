@@ -48,20 +48,44 @@ std::optional<BoxShape> clip_of(const toml::table& t) {
 
 }  // namespace
 
+std::string clip_problem(const BoxShape& clip, const GridSettings& grid) {
+  for (int d = 0; d < 3; ++d) {
+    if (!(clip.upper[d] > clip.lower[d]))
+      return fmt::format(
+          "expected clip upper > lower on every axis; on {} upper = {} m, lower = {} m", "xyz"[d],
+          clip.upper[d], clip.lower[d]);
+    if (!(clip.upper[d] > grid.lower[d] && clip.lower[d] < grid.upper[d]))
+      return fmt::format("the clip [{}, {}] m along {} misses the grid [{}, {}] m", clip.lower[d],
+                         clip.upper[d], "xyz"[d], grid.lower[d], grid.upper[d]);
+  }
+  return {};
+}
+
+namespace {}  // namespace
+
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
                         MeshFiles mesh_files, std::vector<Diagnostic>& errors) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     toml::table& body = *bodies[i].as_table();
     toml::table* mesh = body["mesh"].as_table();
     if (!mesh) continue;
-    fs::path file = text(*mesh, "file");
+    const std::string name = text(*mesh, "file");
+    const std::string key = element_path("body", body, i) + ".mesh.file";
+    if (name.find('\0') != std::string::npos) {
+      errors.push_back(v.at(key, "the path holds a NUL character"));
+      continue;
+    }
+    fs::path file = name;
     if (file.is_relative()) file = fs::path(scene_file).parent_path() / file;
     std::error_code ec;
     const fs::path absolute = fs::weakly_canonical(fs::absolute(file), ec);
     if (ec || !fs::is_regular_file(absolute)) {
       if (mesh_files == MeshFiles::may_be_missing) continue;
-      errors.push_back(v.at(element_path("body", body, i) + ".mesh.file",
-                            fmt::format("no such file: {}", (ec ? file : absolute).string())));
+      const bool exists = !ec && fs::exists(absolute);
+      const std::string shown = (ec ? file : absolute).string();
+      errors.push_back(v.at(key, exists
+                                     ? "not a regular file (a directory, device or pipe): " + shown
+                                     : "no such file: " + shown));
       continue;
     }
     mesh->insert_or_assign("file", absolute.string());
@@ -111,6 +135,13 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
         error(path + ".upper",
               fmt::format("expected upper > lower on every axis; on {} upper = {} m, lower = {} m",
                           "xy"[d], p.upper[d], p.lower[d]));
+    // A cell larger than the panel leaves no wall in it: no core to build.
+    const double narrowest = std::min(p.upper[0] - p.lower[0], p.upper[1] - p.lower[1]);
+    if (!(p.cell_diameter < narrowest))
+      error(path + ".cell_diameter",
+            fmt::format("cells of {} m do not fit in the panel, {} m across at its narrowest: "
+                        "expected a cell diameter below the panel's width",
+                        p.cell_diameter, narrowest));
     // Each cell keeps an interior: the walls on either side of it must not meet.
     const double widest = p.double_walls ? 2 * p.wall_thickness : p.wall_thickness;
     if (!(widest < p.cell_diameter / 2))
@@ -119,6 +150,9 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
                                                   widest, p.double_walls ? " (double walls)" : "",
                                                   p.cell_diameter, p.double_walls ? 4 : 2));
     std::optional<BoxShape> clip = clip_of(t);
+    if (clip)
+      if (const std::string problem = clip_problem(*clip, s.grid); !problem.empty())
+        error(path + ".clip", problem);
     const double bottom = p.top - p.front_thickness - p.core_height - p.rear_thickness;
     // With a far field, only the zone is material points (the rest is finite elements).
     if (far_field && text(*far_field, "panel") == p.name) {

@@ -22,6 +22,8 @@ std::optional<std::size_t> find_material(const Scene& s, const std::string& name
 void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, const Validated& v,
                         MeshFiles mesh_files, std::vector<Diagnostic>& errors);
 MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid);
+// What is wrong with a body's or a panel's clip (empty, or missing the grid), or "".
+std::string clip_problem(const BoxShape& clip, const GridSettings& grid);
 // Appends <panel>.front, .core and .rear to s.bodies (after the [[body]] entries). The panel a
 // [far_field] table names (`far_field`, may be null) is material points in its zone only.
 void read_panels(const toml::array& panels, Scene& s, const Validated& v,

@@ -2,6 +2,7 @@
 // parameters from the table or else from the library material, written back into the resolved
 // scene; a parameter table for a model the material does not name is refused.
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -214,6 +215,18 @@ class MaterialReader {
   const mpm::HydroModels* L_ = nullptr;
 };
 
+// A material whose reference wave speed is not a finite positive number (a modulus or an EOS
+// constant near the largest double) would give no time step: refuse it here, not at step 0.
+void check_wave_speed(const MaterialSettings& m, const std::string& path, Checker& c) {
+  const mpm::HydroModels& h = m.models;
+  if (!(h.density > 0) || !(h.youngs_modulus > 0)) return;  // reported where they are read
+  const double speed = mpm::HydroMaterial(m.name, h).sound_speed(h.density, 0.0, /*failed=*/false);
+  if (!(std::isfinite(speed) && speed > 0))
+    c.error(path, fmt::format("its wave speed at the reference density is {} m/s: expected a "
+                              "finite speed (check its moduli and equation-of-state constants)",
+                              speed));
+}
+
 }  // namespace
 
 void read_materials(toml::array& array, Scene& s, Checker& c) {
@@ -242,6 +255,7 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     r.failure();
     r.erosion();
     r.heating();
+    check_wave_speed(m, path, c);
     s.materials.push_back(m);
   }
 }

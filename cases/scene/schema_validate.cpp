@@ -316,8 +316,9 @@ class Validator {
         error(at, key_path, render(node), prefix + e.what());
         return std::nullopt;
       }
-      // A unitless string ("0.5") is a number in SI, like an unquoted number.
-      if (q.dim != key.dim && q.dim != dims::none) {
+      // A unitless string ("0.5") is a number in SI, like an unquoted number; a unit must be the
+      // key's ("3 rad" is no length).
+      if (q.dim != key.dim && !q.bare) {
         error(at, key_path, render(node),
               fmt::format("{}expected {}, got {}", prefix, expected_phrase(key),
                           dimension_phrase(q.dim)));

@@ -400,7 +400,7 @@ Quantity parse_quantity(std::string_view text) {
   std::string_view rest;
   const double number = parse_number(trimmed, rest);
   const std::string_view unit = trim(rest);
-  if (unit.empty()) return Quantity{number, dims::none};
+  if (unit.empty()) return Quantity{number, dims::none, true};
   if (is_celsius(unit)) return Quantity{number + kCelsiusOffset, dims::temperature};
 
   const Scale scale = UnitParser(unit).parse();

@@ -37,6 +37,7 @@ inline constexpr Dim specific_heat{2, 0, -2, -1};   // J/(kg K)
 struct Quantity {
   double si = 0.0;
   Dim dim{};
+  bool bare = false;  // no unit written: a plain number, which a scene reads as SI
 };
 
 // Thrown by parse_quantity with a message that says what was wrong with the text
