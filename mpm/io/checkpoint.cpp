@@ -35,6 +35,7 @@ void write_checkpoint(const fs::path& path, const Solver& solver, const Checkpoi
   const fs::path tmp = path.string() + ".tmp";
   {
     Hdf5File file(tmp.string(), Hdf5File::Mode::create);
+    file.checksum_datasets();  // a damaged checkpoint is refused on resume, not read wrong
     const Particles& P = solver.particles();
     const std::size_t n = P.size();
     std::string order;  // the fields in the order they were declared, which the snapshots follow

@@ -3,6 +3,7 @@
 // resumed run adds floating-point numbers in exactly the same order as an uninterrupted one), the
 // solver's state and any values the caller wants back (output schedule, ...). Written to a
 // temporary file and renamed, so a crash while writing leaves the previous checkpoint intact.
+// Every dataset carries a Fletcher-32 checksum: a damaged checkpoint fails to read.
 #include <filesystem>
 #include <map>
 #include <string>

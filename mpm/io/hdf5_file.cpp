@@ -1,5 +1,7 @@
 #include "mpm/io/hdf5_file.hpp"
 
+#include <algorithm>
+
 #include <exception>
 #include <filesystem>
 
@@ -56,13 +58,18 @@ void check_status(herr_t status, const std::string& what, const std::string& pat
 }
 
 void write_dataset(hid_t file, const std::string& path, const std::string& name, hid_t type,
-                   const void* data, std::size_t rows, std::size_t columns) {
+                   const void* data, std::size_t rows, std::size_t columns, bool checksum) {
   const hsize_t dims[2] = {rows, columns};
-  Handle space{
-      check(H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr), "create dataspace", path),
-      H5Sclose};
+  const int rank = columns == 1 ? 1 : 2;
+  Handle space{check(H5Screate_simple(rank, dims, nullptr), "create dataspace", path), H5Sclose};
   Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
   H5Pset_obj_track_times(dcpl.id, false);
+  if (checksum && rows * columns > 0) {
+    // Chunks of up to 65,536 rows, each with its Fletcher-32 checksum.
+    const hsize_t chunk[2] = {std::min<hsize_t>(rows, 65536), columns};
+    check_status(H5Pset_chunk(dcpl.id, rank, chunk), "chunk dataset '" + name + "'", path);
+    check_status(H5Pset_fletcher32(dcpl.id), "checksum dataset '" + name + "'", path);
+  }
   Handle set{
       check(H5Dcreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT),
             "create dataset '" + name + "'", path),
@@ -124,12 +131,12 @@ void Hdf5File::close() {
 
 void Hdf5File::write(const std::string& name, const double* data, std::size_t rows,
                      std::size_t columns) {
-  write_dataset(file_, path_, name, H5T_NATIVE_DOUBLE, data, rows, columns);
+  write_dataset(file_, path_, name, H5T_NATIVE_DOUBLE, data, rows, columns, checksums_);
 }
 
 void Hdf5File::write(const std::string& name, const std::int64_t* data, std::size_t rows,
                      std::size_t columns) {
-  write_dataset(file_, path_, name, H5T_NATIVE_INT64, data, rows, columns);
+  write_dataset(file_, path_, name, H5T_NATIVE_INT64, data, rows, columns, checksums_);
 }
 
 void Hdf5File::write_attribute(const std::string& name, double value) {

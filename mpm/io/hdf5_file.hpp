@@ -27,6 +27,9 @@ class Hdf5File {
   // no truncated file is left to read and no space is held on a full disk.
   void close();
 
+  // Datasets written from now on carry a Fletcher-32 checksum (chunked), which every read checks:
+  // a damaged file fails to read instead of giving wrong values.
+  void checksum_datasets() { checksums_ = true; }
   // Dataset of rows x columns values (columns = 1 writes a 1-D dataset).
   void write(const std::string& name, const double* data, std::size_t rows, std::size_t columns);
   void write(const std::string& name, const std::int64_t* data, std::size_t rows,
@@ -54,6 +57,7 @@ class Hdf5File {
   std::int64_t file_ = -1;      // hid_t
   bool created_ = false;        // opened to write: removed if an exception unwinds it
   int exceptions_at_open_ = 0;  // std::uncaught_exceptions() when opened
+  bool checksums_ = false;
 };
 
 }  // namespace hvi::mpm::io

@@ -236,8 +236,9 @@ TEST(FarFieldSample, GivesTheFieldsTheElementsHold) {
                     0.5 * (A[0][1] + A[1][0])};
       for (int k = 0; k < 6; ++k) EXPECT_NEAR(r[s].strain[k], eps[k], 1e-14);
       // sigma = C : eps with engineering shears, from fem::stiffness (orthotropic.hpp).
-      const auto& layer = sandwich(degree, false, std::nullopt).layers[r[s].layer];
-      const auto C = stiffness(layer.elasticity);
+      // (The mesh held by name: a reference into the temporary's layers outlived it.)
+      const LayeredMesh mesh = sandwich(degree, false, std::nullopt);
+      const auto C = stiffness(mesh.layers[static_cast<std::size_t>(r[s].layer)].elasticity);
       const Sym sigma{C[0] * eps[0] + C[3] * eps[1] + C[4] * eps[2],
                       C[3] * eps[0] + C[1] * eps[1] + C[5] * eps[2],
                       C[4] * eps[0] + C[5] * eps[1] + C[2] * eps[2],

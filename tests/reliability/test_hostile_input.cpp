@@ -86,27 +86,21 @@ TEST(HostileScene, KeysNestedThousandsDeepAreRefusedBeforeParsing) {
   }
 }
 
+// An upper bound at -1e300 m (the lattice range once overflowed its integer: a hang), and a clip
+// that misses the grid.
 TEST(HostileScene, AnEmptyOrFarClipIsRefused) {
   const std::string body = R"(
 [[body]]
 name = "ball"
 material = "Al"
 sphere = { center = [0, 0, 0], radius = "1 mm" }
-clip = { lower = ["0 mm", "0 mm", "-1 mm"], upper = ["1 mm", "1 mm", "-1e300 m"] }
+clip = { lower = ["0 mm", "0 mm", LOWER], upper = ["1 mm", "1 mm", UPPER] }
 )";
-  const auto d = error_for(head + body, "body.ball.clip");
+  const auto empty = with(with(body, "LOWER", "\"-1 mm\""), "UPPER", "\"-1e300 m\"");
+  auto d = error_for(head + empty, "body.ball.clip");
   EXPECT_TRUE(says(d, "expected clip upper > lower on every axis; on z")) << d.text();
-}
-
-TEST(HostileScene, AClipMissingTheGridIsRefused) {
-  const std::string body = R"(
-[[body]]
-name = "ball"
-material = "Al"
-sphere = { center = [0, 0, 0], radius = "1 mm" }
-clip = { lower = ["0 mm", "0 mm", "1 m"], upper = ["1 mm", "1 mm", "2 m"] }
-)";
-  const auto d = error_for(head + body, "body.ball.clip");
+  const auto far = with(with(body, "LOWER", "\"1 m\""), "UPPER", "\"2 m\"");
+  d = error_for(head + far, "body.ball.clip");
   EXPECT_TRUE(says(d, "misses the grid")) << d.text();
 }
 

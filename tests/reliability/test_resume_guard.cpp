@@ -60,4 +60,20 @@ TEST(ResumeGuard, AChangedStateIsRefusedAndALaterEndTimeResumes) {
       << read(log);
 }
 
+// A checkpoint damaged on disk (64 bytes flipped in its data) is refused on resume, by the
+// Fletcher-32 checksum of its datasets; it once resumed with eight points' pressures wrong.
+TEST(ResumeGuard, ADamagedCheckpointIsRefused) {
+  const fs::path dir = fs::path(testing::TempDir()) / "hvi_resume_damaged";
+  const fs::path log = fs::path(testing::TempDir()) / "hvi_resume_damaged.log";
+  fs::remove_all(dir);
+  ASSERT_EQ(
+      run("run " + scene + " --out " + dir.string() + " --threads 1 --set run.max_steps=5", log), 0)
+      << read(log);
+  std::string bytes = read(dir / "checkpoint.h5");
+  for (std::size_t k = 0; k < 64; ++k) bytes[bytes.size() / 2 + k] ^= '\xff';
+  std::ofstream(dir / "checkpoint.h5", std::ios::binary) << bytes;
+  EXPECT_EQ(run("run --resume " + dir.string(), log), 2);
+  EXPECT_NE(read(log).find("checkpoint.h5"), std::string::npos) << read(log);
+}
+
 }  // namespace
