@@ -474,10 +474,30 @@ std::string apply_resolution(toml::table& document, const std::string& file) {
   return choice;
 }
 
+// The values a chosen [resolutions.<name>] replaces are checked too: a scene whose base value is
+// wrong ("nan mm") is wrong at any resolution, though the chosen one never reads it. Only values
+// written in the base are checked here; what the base leaves out the set may supply.
+void check_replaced_values(const toml::table& document, const std::string& file) {
+  const auto* name = document["resolution"].as_string();
+  const auto* set = name ? document["resolutions"][name->get()].as_table() : nullptr;
+  if (!set) return;  // no choice, or an unknown one: apply_resolution says so
+  toml::table base = document;
+  base.erase("resolutions");
+  std::vector<Diagnostic> errors;
+  for (const Diagnostic& d : validate(base, scene_schema(), file).errors)
+    if (set->contains(d.key) && !d.message.starts_with("missing required")) {
+      Diagnostic e = d;
+      e.message += fmt::format(" (the base value, which [resolutions.{}] replaces)", name->get());
+      errors.push_back(e);
+    }
+  if (!errors.empty()) throw SceneError(errors);
+}
+
 Scene resolve_document(toml::table document, const std::string& file,
                        const std::vector<std::string>& overrides,
                        MeshFiles mesh_files = MeshFiles::must_exist) {
   apply_overrides(document, overrides);  // a --set resolution=<name> picks the set
+  check_replaced_values(document, file);
   const std::string choice = apply_resolution(document, file);
   apply_overrides(document, overrides);  // the command line wins over the set
   Scene scene = resolve(document, file, mesh_files);

@@ -104,6 +104,16 @@ clip = { lower = ["0 mm", "0 mm", LOWER], upper = ["1 mm", "1 mm", UPPER] }
   EXPECT_TRUE(says(d, "misses the grid")) << d.text();
 }
 
+// A base value that the chosen resolution replaces is checked all the same.
+TEST(HostileScene, ABaseValueAResolutionReplacesIsChecked) {
+  const std::string scene = with(head, "\"0.5 mm\"", "\"nan mm\"") +
+                            "[[body]]\nname = \"ball\"\nmaterial = \"Al\"\nsphere = { center = "
+                            "[0, 0, 0], radius = \"1 mm\" }\n[resolutions.coarse]\n"
+                            "\"grid.cell_size\" = \"1 mm\"\n";
+  const auto d = error_for("resolution = \"coarse\"\n" + scene, "grid.cell_size");
+  EXPECT_TRUE(says(d, "(the base value, which [resolutions.coarse] replaces)")) << d.text();
+}
+
 TEST(HostileScene, AnInfiniteWaveSpeedIsRefusedByCheck) {
   const auto d = error_for(
       with(head, "library = \"Al6061\"", "library = \"Al6061\"\nyoungs_modulus = 1.7e308"),
