@@ -341,7 +341,8 @@ TableSpec panel_table() {
 }
 
 // The hybrid (coupling/): the panel outside an in-plane zone as finite elements.
-TableSpec far_field_table() {
+// [far_field.zone]: the MPM zone, and [far_field.zone.grow], the zone growing over the far field.
+TableSpec far_field_zone_table() {
   TableSpec zone{.name = "zone",
                  .doc =
                      "The MPM zone in plane: the part of the panel that is material points. Its "
@@ -375,6 +376,10 @@ TableSpec far_field_table() {
   zone.vector_required("lower", dims::length, "x, y of the zone's lower corner", 2)
       .vector_required("upper", dims::length, "x, y of the zone's upper corner", 2)
       .table(grow);
+  return zone;
+}
+
+TableSpec far_field_table() {
   TableSpec t{
       .name = "far_field",
       .doc =
@@ -386,7 +391,7 @@ TableSpec far_field_table() {
           "of its in-plane extent (cut by its clip). Both share the grid nodes of a band "
           "around the zone and advance with one time step. Absent: nothing of fem/ is built."};
   t.string_required("panel", "The [[panel]] whose far field this is")
-      .table(zone)
+      .table(far_field_zone_table())
       .integer(
           "band_elements", closed(1, 16), 2,
           "Elements one grid cell wide beyond the zone, tied to grid nodes (the interface band)")
