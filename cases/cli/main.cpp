@@ -33,13 +33,13 @@
 #include "cases/cli/convergence_command.hpp"
 #include "cases/cli/geometry_command.hpp"
 #include "cases/cli/sweep_command.hpp"
+#include "cases/parallel/ranks.hpp"
 #include "cases/run/build_solver.hpp"
 #include "cases/run/hybrid.hpp"
 #include "cases/run/run.hpp"
 #include "cases/scene/scene.hpp"
 #include "cases/scene/scene_schema.hpp"
 #include "hvi_git_revision.hpp"
-#include "parallel/ranks.hpp"
 
 namespace {
 

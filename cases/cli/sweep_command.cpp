@@ -13,10 +13,10 @@
 #include <toml++/toml.h>
 
 #include "cases/cli/child_run.hpp"
+#include "cases/parallel/task_queue.hpp"
 #include "cases/run/run.hpp"
 #include "cases/scene/scene.hpp"
 #include "cases/scene/schema.hpp"
-#include "parallel/task_queue.hpp"
 
 namespace hvi::driver {
 

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "parallel/ranks.hpp"
+#include "cases/parallel/ranks.hpp"
 
 namespace hvi::driver {
 

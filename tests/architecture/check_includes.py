@@ -10,12 +10,12 @@ import pathlib
 import re
 import sys
 
-LIBRARIES = ("materials", "parallel", "geometry", "mpm", "fem", "coupling", "analysis", "cases/scene", "cases/run", "cases/cli")
+LIBRARIES = ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cases/parallel", "cases/scene", "cases/run", "cases/cli")
 
 # Folder -> what its files may include besides their own folder: folders, or a folder's subfolder.
 RULES = {
     "materials": (),  # hvi_materials: the laws on doubles, nothing of hvi
-    "parallel": (),  # hvi_parallel: the ranks of an MPI job and the tasks handed out among them
+    "cases/parallel": (),  # hvi_parallel: the ranks of an MPI job and the tasks handed out among them
     "geometry": (),  # hvi_geometry: solids and point sets, nothing of hvi
     "mpm": ("materials",),  # hvi_mpm
     "fem": ("materials",),  # hvi_fem: the laws, never through mpm/
@@ -23,7 +23,7 @@ RULES = {
     "analysis": ("mpm/io",),  # hvi_analysis: the snapshots' HDF5 reader, not the solver
     "cases/scene": ("materials", "mpm", "analysis"),  # hvi_scene: the one scene reader
     "cases/run": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cases/scene"),  # hvi_run
-    "cases/cli": ("materials", "parallel", "geometry", "mpm", "fem", "coupling", "analysis", "cases/scene", "cases/run"),  # hvi
+    "cases/cli": ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cases/parallel", "cases/scene", "cases/run"),  # hvi
     "bench": LIBRARIES,
     "tests": LIBRARIES,
 }

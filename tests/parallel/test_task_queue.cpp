@@ -1,7 +1,7 @@
-// Tasks handed out among ranks (parallel/task_queue.hpp): every task runs once, on whichever rank,
-// and rank 0 hears of each with the result that rank gave it; when rank 0's callback says stop,
-// no further task is handed out and those under way still report. Run plainly (one rank) and under
-// mpirun on 3 ranks, where every rank takes a share. The tests' own main joins the job.
+// Tasks handed out among ranks (cases/parallel/task_queue.hpp): every task runs once, on whichever
+// rank, and rank 0 hears of each with the result that rank gave it; when rank 0's callback says
+// stop, no further task is handed out and those under way still report. Run plainly (one rank) and
+// under mpirun on 3 ranks, where every rank takes a share. The tests' own main joins the job.
 #include <chrono>
 #include <map>
 #include <set>
@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "parallel/task_queue.hpp"
+#include "cases/parallel/task_queue.hpp"
 
 namespace hvi::parallel {
 namespace {

@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "parallel/ranks.hpp"
+#include "cases/parallel/ranks.hpp"
 
 namespace hvi::parallel {
 

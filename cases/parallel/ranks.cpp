@@ -1,4 +1,4 @@
-#include "parallel/ranks.hpp"
+#include "cases/parallel/ranks.hpp"
 
 #include <cstdlib>
 

@@ -1,4 +1,4 @@
-#include "parallel/task_queue.hpp"
+#include "cases/parallel/task_queue.hpp"
 
 #include <chrono>
 #include <cstdint>
