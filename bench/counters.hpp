@@ -12,6 +12,11 @@
 
 namespace hvi::bench {
 
+// How a whole-run benchmark is timed: once on 1 and once on 2 threads (its argument), wall time.
+inline void on_one_and_two_threads(benchmark::internal::Benchmark* b) {
+  b->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+}
+
 inline std::string counter_name(const std::string& phase) {
   std::string s = "s_";
   for (const char c : phase)

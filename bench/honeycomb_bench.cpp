@@ -97,18 +97,7 @@ void HoneycombNodeAverage(benchmark::State& state) {
   Honeycomb(state, true);
 }
 
-BENCHMARK(HoneycombParticle)
-    ->Name("Honeycomb")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
-BENCHMARK(HoneycombNodeAverage)
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
+BENCHMARK(HoneycombParticle)->Name("Honeycomb")->Apply(hvi::bench::on_one_and_two_threads);
+BENCHMARK(HoneycombNodeAverage)->Apply(hvi::bench::on_one_and_two_threads);
 
 }  // namespace

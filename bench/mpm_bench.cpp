@@ -43,30 +43,10 @@ void ElasticBlockCpGimpContact(benchmark::State& state) {
   run_block(state, hvi::mpm::ShapeFunction::cpgimp, hvi::mpm::Dilatation::particle, true);
 }
 
-BENCHMARK(ElasticBlock)
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
-BENCHMARK(ElasticBlockCpGimp)
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
-BENCHMARK(ElasticBlockCpGimpNodeAverage)
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
-BENCHMARK(ElasticBlockCpGimpContact)
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
+BENCHMARK(ElasticBlock)->Apply(hvi::bench::on_one_and_two_threads);
+BENCHMARK(ElasticBlockCpGimp)->Apply(hvi::bench::on_one_and_two_threads);
+BENCHMARK(ElasticBlockCpGimpNodeAverage)->Apply(hvi::bench::on_one_and_two_threads);
+BENCHMARK(ElasticBlockCpGimpContact)->Apply(hvi::bench::on_one_and_two_threads);
 
 }  // namespace
 

@@ -63,31 +63,35 @@ TriangleMesh from_cgal(const Mesh& input) {
 
 }  // namespace cgal
 
+namespace {
+// "1 edge", "3 edges".
+std::string count(std::size_t n, const char* noun) {
+  return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+}  // namespace
+
 std::string SurfaceCheck::problem() const {
   if (triangles == 0) return "the surface has no triangles";
   if (border_edges > 0)
     return fmt::format(
-        "the surface is not closed: {} border edge{} (edges with a triangle on one side only: a "
-        "hole or "
-        "a missing face)",
-        border_edges, border_edges == 1 ? "" : "s");
+        "the surface is not closed: {} (edges with a triangle on one side only: "
+        "a hole or a missing face)",
+        count(border_edges, "border edge"));
   if (non_manifold_edges > 0)
-    return fmt::format("the surface is not a manifold: {} edge{} shared by more than two triangles",
-                       non_manifold_edges, non_manifold_edges == 1 ? "" : "s");
+    return fmt::format("the surface is not a manifold: {} shared by more than two triangles",
+                       count(non_manifold_edges, "edge"));
   if (misoriented_edges > 0)
     return fmt::format(
-        "the surface is not consistently oriented: {} edge{} where the two triangles run the same "
-        "way "
-        "(some triangles are flipped)",
-        misoriented_edges, misoriented_edges == 1 ? "" : "s");
+        "the surface is not consistently oriented: {} where the two triangles run "
+        "the same way (some triangles are flipped)",
+        count(misoriented_edges, "edge"));
   if (non_manifold_vertex)
     return "the surface is not a manifold: a vertex joins triangles that do not form one fan";
   if (degenerate_triangles > 0)
-    return fmt::format("the surface has {} degenerate (zero-area) triangle{}", degenerate_triangles,
-                       degenerate_triangles == 1 ? "" : "s");
+    return "the surface has " + count(degenerate_triangles, "degenerate (zero-area) triangle");
   if (self_intersections > 0)
-    return fmt::format("the surface intersects itself: {} pair{} of triangles intersect",
-                       self_intersections, self_intersections == 1 ? "" : "s");
+    return fmt::format("the surface intersects itself: {} of triangles intersect",
+                       count(self_intersections, "pair"));
   if (!outward)
     return fmt::format(
         "the surface is inside-out: its triangles face inward (enclosed volume {:.6g} m^3)",

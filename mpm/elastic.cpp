@@ -71,13 +71,7 @@ StressUpdate LinearElastic::update_stress(Particles& particles, ParticleRange ra
     const double rho = particles.mass[p] / V.after;
     max_signal = std::max(max_signal, p_wave_speed(rho) + speed(particles, p));
   }
-  StressUpdate result;
-  result.max_signal_speed = max_signal;
-  if (bad != INT64_MAX) {
-    result.bad_particle = bad;
-    result.problem = "non-positive volume or non-finite stress";
-  }
-  return result;
+  return StressUpdate::of(max_signal, bad, "non-positive volume or non-finite stress");
 }
 
 }  // namespace hvi::mpm

@@ -4,12 +4,22 @@
 
 namespace hvi::mpm {
 
-void update_nodes(SparseGrid& grid, bool velocity, bool increment, double dt) {
+namespace {
+
+constexpr int S = SparseGrid::block_size;
+
+// Runs `kernel(block)` on every block of the grid, the blocks shared among the threads.
+template <class Kernel>
+void for_each_block(SparseGrid& grid, const Kernel& kernel) {
   const auto blocks = static_cast<std::int64_t>(grid.block_count());
-  constexpr int S = SparseGrid::block_size;
 #pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    const auto block = static_cast<std::uint32_t>(b);
+  for (std::int64_t b = 0; b < blocks; ++b) kernel(static_cast<std::uint32_t>(b));
+}
+
+}  // namespace
+
+void update_nodes(SparseGrid& grid, bool velocity, bool increment, double dt) {
+  for_each_block(grid, [&](std::uint32_t block) {
     const double* m = grid.values(block, node_value::mass);
     double* p = grid.values(block, node_value::p);
     double* f = grid.values(block, node_value::f);
@@ -26,22 +36,18 @@ void update_nodes(SparseGrid& grid, bool velocity, bool increment, double dt) {
         q[d * S + l] = has_mass ? q[d * S + l] : 0.0;
       }
     }
-  }
+  });
 }
 
 void update_remapped(SparseGrid& grid) {
-  const auto blocks = static_cast<std::int64_t>(grid.block_count());
-  constexpr int S = SparseGrid::block_size;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    const auto block = static_cast<std::uint32_t>(b);
+  for_each_block(grid, [&](std::uint32_t block) {
     const double* m = grid.values(block, node_value::mass);
     double* q = grid.values(block, node_value::q);
     for (int l = 0; l < S; ++l) {
       const double inv_m = m[l] > 0.0 ? 1.0 / m[l] : 0.0;
       for (int d = 0; d < 3; ++d) q[d * S + l] *= inv_m;
     }
-  }
+  });
 }
 
 }  // namespace hvi::mpm

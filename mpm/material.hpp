@@ -30,6 +30,18 @@ struct StressUpdate {
   double max_signal_speed = 0.0;   // max over the group of (sound speed + |v|), m/s
   std::int64_t bad_particle = -1;  // lowest index of a particle in an invalid state, or -1
   const char* problem = nullptr;   // what was invalid ("non-positive volume", "non-finite stress")
+
+  // The result over a group: its largest signal speed, and `problem` at `first_bad` unless that
+  // is INT64_MAX (no particle was invalid).
+  static StressUpdate of(double max_signal_speed, std::int64_t first_bad, const char* problem) {
+    StressUpdate result;
+    result.max_signal_speed = max_signal_speed;
+    if (first_bad != INT64_MAX) {
+      result.bad_particle = first_bad;
+      result.problem = problem;
+    }
+    return result;
+  }
 };
 
 class Material {

@@ -25,7 +25,7 @@ import h5py
 import numpy as np
 
 from failure_history import body_index, snapshot_paths
-from probe_history import length, lengths  # lengths with units, "0.5 mm"
+from hvi_units import length, lengths  # lengths with units, "0.5 mm", read by hvi
 
 
 def held_share(run, axis):
@@ -87,8 +87,8 @@ def main(argv=None):
                         help="mass per ring area, kg/m^2 (default), or the median z-velocity, m/s")
     args = parser.parse_args(argv)
     try:
-        width = length(args.bin)
-        radius = length(args.radius) if args.radius else 8 * width
+        width = length(args.bin, "--bin")
+        radius = length(args.radius, "--radius") if args.radius else 8 * width
         if not (width > 0 and radius > 0):
             raise ValueError("--bin and --radius must be positive")
         axis = lengths("--axis", args.axis, "X,Y")

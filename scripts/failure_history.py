@@ -37,7 +37,7 @@ import sys
 import h5py
 import numpy as np
 
-from probe_history import length, lengths  # lengths with units, "0.5 mm"
+from hvi_units import length, lengths  # lengths with units, "0.5 mm", read by hvi
 
 
 def body_index(run, name, option="--body"):
@@ -176,8 +176,8 @@ def main(argv=None):
     parser.add_argument("--axis", default="0 mm,0 mm", help='impact axis "X,Y" (default "0 mm,0 mm")')
     args = parser.parse_args(argv)
     try:
-        width = length(args.bin)
-        radius = length(args.radius) if args.radius else 8 * width
+        width = length(args.bin, "--bin")
+        radius = length(args.radius, "--radius") if args.radius else 8 * width
         axis = lengths("--axis", args.axis, "X,Y")
         if not (width > 0 and radius > 0):
             raise ValueError("--bin and --radius must be positive")

@@ -10,6 +10,8 @@
 //   hvi measure RUN_DIR [--snapshot N|last] [--axis x0,y0] [--resolution R]...
 //                                                  hole sizes, bulge, debris (measurements.json)
 //   hvi fit CSV_OR_DIR... --form front|rear|taper  the dimensional-analysis power laws
+//   hvi probe RUN_DIR --point X,Y,Z [--axis z]     a displacement history from the snapshots
+//   hvi units VALUE... [--expect DIMENSION]        values with units in SI
 //   hvi report DIR                                 Markdown report with figures (scripts/report.py)
 //   hvi compare RUN_A RUN_B                        two runs' measures and costs side by side
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
@@ -32,6 +34,7 @@
 #include "cases/cli/compare_command.hpp"
 #include "cases/cli/convergence_command.hpp"
 #include "cases/cli/geometry_command.hpp"
+#include "cases/cli/probe_command.hpp"
 #include "cases/cli/sweep_command.hpp"
 #include "cases/parallel/ranks.hpp"
 #include "cases/run/build_solver.hpp"
@@ -163,6 +166,8 @@ struct Commands {
   hvi::driver::CompareOptions compare;
   std::unique_ptr<hvi::driver::MeasureCli> measure;
   std::unique_ptr<hvi::driver::FitCli> fit;
+  std::unique_ptr<hvi::driver::ProbeCli> probe;
+  std::unique_ptr<hvi::driver::UnitsCli> units;
 };
 
 // check, run, geometry, keys: the commands of one scene.
@@ -264,6 +269,8 @@ void add_analysis_commands(CLI::App& app, Commands& c) {
 
   c.measure = hvi::driver::add_measure_command(app);
   c.fit = hvi::driver::add_fit_command(app);
+  c.probe = hvi::driver::add_probe_command(app);
+  c.units = hvi::driver::add_units_command(app);
 }
 
 // hvi run: a scene, or the run in --resume DIR with its resolved scene.
@@ -309,6 +316,8 @@ int dispatch(Commands& c, const std::string& command_line, const hvi::parallel::
   if (*c.check) return check(c.scene_path, c.overrides, c.max_memory);
   if (*c.measure->command) return hvi::driver::measure_command(c.measure->options());
   if (*c.fit->command) return hvi::driver::fit_command(c.fit->options);
+  if (*c.probe->command) return c.probe->execute();
+  if (*c.units->command) return c.units->execute();
   if (*c.convergence_cmd) {
     c.convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
     return hvi::driver::run_convergence(c.convergence);

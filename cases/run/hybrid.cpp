@@ -10,6 +10,7 @@
 #include "cases/run/bodies.hpp"
 #include "cases/run/build_solver.hpp"
 #include "coupling/panel_far_field.hpp"
+#include "mpm/io/hdf5_file.hpp"
 
 namespace hvi::driver {
 
@@ -140,12 +141,24 @@ std::string Hybrid::describe() const {
       far_field_->stable_time_step(), far_field_->bytes() / 1e6);
 }
 
+std::string Hybrid::nodes_file(std::int64_t step) {
+  return fmt::format("far_field/nodes_{:06d}.h5", step);
+}
+
 void Hybrid::write_snapshot(const fs::path& dir, std::int64_t step, double time) {
   fs::create_directories(dir / "far_field");
   const std::string file = fmt::format("far_field/far_field_{:06d}.vtu", step);
   far_field_->write_vtu((dir / file).string());
   snapshots_.emplace_back(time, file);
   fem::FarField::write_pvd((dir / "far_field.pvd").string(), snapshots_);
+
+  const fem::FarField& f = *far_field_;
+  mpm::io::Hdf5File nodes((dir / nodes_file(step)).string(), mpm::io::Hdf5File::Mode::create);
+  nodes.write("reference_position", f.reference_positions().data(), f.node_count(), 3);
+  nodes.write("displacement", f.displacement().data(), f.node_count(), 3);
+  nodes.write("lumped_mass", f.lumped_mass().data(), f.node_count(), 1);
+  nodes.write_attribute("time", time);
+  nodes.write_attribute("step", step);
 }
 
 void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
@@ -166,8 +179,10 @@ void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
     if (std::regex_search(line, m, entry)) {
       if (std::stoll(m[3].str()) <= last_step)
         snapshots_.emplace_back(std::stod(m[1].str()), m[2].str());
-      else
+      else {
         fs::remove(dir / m[2].str());
+        fs::remove(dir / nodes_file(std::stoll(m[3].str())));
+      }
     }
 }
 

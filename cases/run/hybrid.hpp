@@ -36,7 +36,11 @@ class Hybrid {
   // One line for the run's header: nodes, elements, tied nodes, stable step, memory.
   std::string describe() const;
 
-  // DIR/far_field/far_field_<step>.vtu and the collection DIR/far_field.pvd for ParaView.
+  // DIR/far_field/far_field_<step>.vtu and the collection DIR/far_field.pvd for ParaView, and
+  // beside them DIR/far_field/nodes_<step>.h5 for programs (hvi probe, h5py): every node's
+  // undeformed position, displacement and lumped mass (0 at a node a grown zone took over), in
+  // node order; attributes time and step.
+  static std::string nodes_file(std::int64_t step);
   void write_snapshot(const std::filesystem::path& dir, std::int64_t step, double time);
   // A resumed run keeps the snapshots up to `last_step` (read back from far_field.pvd). A zone that
   // grew (its band read back from the checkpoint) takes its cells out of the far field again.

@@ -228,19 +228,29 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
   return t;
 }
 
-TableSpec body_table() {
-  TableSpec sphere{.name = "sphere", .doc = "A solid sphere."};
-  sphere.vector_required("center", dims::length, "Centre")
-      .quantity_required("radius", dims::length, positive(), "Radius");
-  TableSpec box{.name = "box", .doc = "An axis-aligned box."};
+// The box and cylinder of a body's shape and of a refinement zone: the same keys, their own docs.
+TableSpec box_table(const char* doc) {
+  TableSpec box{.name = "box", .doc = doc};
   box.vector_required("lower", dims::length, "Lower corner")
       .vector_required("upper", dims::length, "Upper corner");
-  TableSpec cylinder{.name = "cylinder",
-                     .doc = "A solid circular cylinder along a coordinate axis."};
+  return box;
+}
+
+TableSpec cylinder_table(const char* doc) {
+  TableSpec cylinder{.name = "cylinder", .doc = doc};
   cylinder.vector_required("base_center", dims::length, "Centre of the base disc")
       .choice_required("axis", {"x", "y", "z"}, "Direction of the axis")
       .quantity_required("radius", dims::length, positive(), "Radius")
       .quantity_required("length", dims::length, positive(), "Length along the axis");
+  return cylinder;
+}
+
+TableSpec body_table() {
+  TableSpec sphere{.name = "sphere", .doc = "A solid sphere."};
+  sphere.vector_required("center", dims::length, "Centre")
+      .quantity_required("radius", dims::length, positive(), "Radius");
+  const TableSpec box = box_table("An axis-aligned box.");
+  const TableSpec cylinder = cylinder_table("A solid circular cylinder along a coordinate axis.");
 
   TableSpec mesh{
       .name = "mesh",
@@ -451,15 +461,8 @@ TableSpec contact_table() {
 
 // Zones where bodies are sampled with more points per cell (paper Fig. 4).
 TableSpec refinement_table() {
-  TableSpec box{.name = "box", .doc = "An axis-aligned box zone."};
-  box.vector_required("lower", dims::length, "Lower corner")
-      .vector_required("upper", dims::length, "Upper corner");
-  TableSpec cylinder{.name = "cylinder",
-                     .doc = "A circular cylinder zone along a coordinate axis."};
-  cylinder.vector_required("base_center", dims::length, "Centre of the base disc")
-      .choice_required("axis", {"x", "y", "z"}, "Direction of the axis")
-      .quantity_required("radius", dims::length, positive(), "Radius")
-      .quantity_required("length", dims::length, positive(), "Length along the axis");
+  const TableSpec box = box_table("An axis-aligned box zone.");
+  const TableSpec cylinder = cylinder_table("A circular cylinder zone along a coordinate axis.");
   TableSpec t{.name = "refinement",
               .doc =
                   "A zone sampled with factor times more points per cell along each axis (paper "

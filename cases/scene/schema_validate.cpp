@@ -209,13 +209,26 @@ class Validator {
     }
   }
 
+  // A value written for a key: the key's declaration, the value, its path in the scene and
+  // where it stands in the file.
+  struct Written {
+    const Key& key;
+    const toml::node& node;
+    const std::string& path;
+    toml::source_region at;
+  };
+
+  void error(const Written& w, std::string message) {
+    error(w.at, w.path, w.node.is_table() ? "" : render(w.node), std::move(message));
+  }
+
   void resolve_key(const toml::table* given, const Key& key, const TablePath& path,
                    const toml::source_region& where, toml::table& resolved) {
     const std::string key_path = path.child_data(key.name);
     if (const Entry entry = find_entry(given, key.name)) {
       const toml::source_region at = region_of(*entry.key, *entry.node, where);
       record(key_path, at);
-      convert(key, *entry.node, key_path, at, resolved);
+      convert({key, *entry.node, key_path, at}, resolved);
     } else if (key.required) {
       error(where, key_path, "", "missing required key: expected " + expected_phrase(key));
     } else if (key.default_value) {
@@ -223,62 +236,60 @@ class Validator {
     }
   }
 
-  void convert(const Key& key, const toml::node& node, const std::string& key_path,
-               const toml::source_region& at, toml::table& resolved) {
-    switch (key.kind) {
+  // Stores the value, in SI and checked against the declaration; or reports why it cannot.
+  void convert(const Written& w, toml::table& resolved) {
+    const auto keep = [&](auto&& v) {
+      if (v) resolved.insert_or_assign(w.key.name, std::move(*v));
+    };
+    switch (w.key.kind) {
       case ValueKind::quantity:
-        if (auto v = quantity_value(key, node, key_path, at, "")) {
-          resolved.insert_or_assign(key.name, *v);
-        }
+      case ValueKind::number:
+        keep(scalar_value(w, ""));
         break;
       case ValueKind::quantity_vector:
-        if (auto v = vector_value(key, node, key_path, at)) {
-          resolved.insert_or_assign(key.name, std::move(*v));
-        }
-        break;
-      case ValueKind::number:
-        if (auto v = number_value(key, node, key_path, at)) resolved.insert_or_assign(key.name, *v);
+        keep(vector_value(w));
         break;
       case ValueKind::integer:
-        if (auto v = integer_value(key, node, key_path, at)) {
-          resolved.insert_or_assign(key.name, *v);
-        }
+        keep(integer_value(w));
         break;
       case ValueKind::boolean:
-        if (const auto* b = node.as_boolean()) {
-          resolved.insert_or_assign(key.name, b->get());
-        } else {
-          wrong_type(key, node, key_path, at);
-        }
+        keep(typed_value<bool>(w));
         break;
       case ValueKind::string:
-        if (const auto* s = node.as_string()) {
-          resolved.insert_or_assign(key.name, s->get());
-        } else {
-          wrong_type(key, node, key_path, at);
-        }
+        keep(typed_value<std::string>(w));
         break;
       case ValueKind::choice:
-        if (auto v = choice_value(key, node, key_path, at)) {
-          resolved.insert_or_assign(key.name, std::move(*v));
-        }
+        keep(choice_value(w));
         break;
       case ValueKind::string_list:
-        if (auto v = string_list_value(key, node, key_path, at)) {
-          resolved.insert_or_assign(key.name, std::move(*v));
-        }
+        keep(string_list_value(w));
         break;
     }
   }
 
-  void wrong_type(const Key& key, const toml::node& node, const std::string& key_path,
-                  const toml::source_region& at, const std::string& prefix = "") {
-    error(at, key_path, node.is_table() ? "" : render(node),
-          fmt::format("{}expected {}, got {}", prefix, expected_phrase(key), type_phrase(node)));
+  void wrong_type(const Written& w, const std::string& prefix = "") {
+    error(w, fmt::format("{}expected {}, got {}", prefix, expected_phrase(w.key),
+                         type_phrase(w.node)));
   }
 
-  bool check_range(const Key& key, double v, const toml::node& node, const std::string& key_path,
-                   const toml::source_region& at, const std::string& prefix) {
+  // The value as the TOML type T (bool, std::string, std::int64_t, toml::array), or nullptr
+  // after reporting its wrong type.
+  template <class T>
+  const auto* typed(const Written& w) {
+    const auto* v = w.node.as<T>();
+    if (!v) wrong_type(w);
+    return v;
+  }
+
+  // A boolean or a string, as TOML typed it.
+  template <class T>
+  std::optional<T> typed_value(const Written& w) {
+    if (const auto* v = typed<T>(w)) return v->get();
+    return std::nullopt;
+  }
+
+  bool check_range(const Written& w, double v, const std::string& prefix) {
+    const Key& key = w.key;
     if (std::isfinite(v) && key.range.contains(v)) return true;
     const std::string unit = unit_of(key);
     const std::string what = key.kind == ValueKind::integer ? "an integer"
@@ -292,70 +303,64 @@ class Validator {
       message =
           fmt::format("{}expected {} {}", prefix, what, with_unit(key.range.describe(), unit));
       // For a value written with a unit the SI value makes the comparison with the bound clear.
-      if (!unit.empty() && node.is_string()) {
+      if (!unit.empty() && w.node.is_string()) {
         message += fmt::format(", got {}", with_unit(format_number(v), unit));
       }
     }
-    error(at, key_path, render(node), std::move(message));
+    error(w, std::move(message));
     return false;
   }
 
-  // A quantity: a plain number (SI) or a string "<number> <unit>" of the key's dimension.
-  // `prefix` names the component for vectors ("component 2: ").
-  std::optional<double> quantity_value(const Key& key, const toml::node& node,
-                                       const std::string& key_path, const toml::source_region& at,
-                                       const std::string& prefix) {
+  // A quantity: a plain number (SI) or a string "<number> <unit>" of the key's dimension; or a
+  // dimensionless number (ValueKind::number), where a string must parse as a unitless number
+  // ("0.3"). `prefix` names the component for vectors ("component 2: ").
+  std::optional<double> scalar_value(const Written& w, const std::string& prefix) {
+    const bool number = w.key.kind == ValueKind::number;
     double v = 0.0;
-    if (node.is_number()) {
-      v = node.value<double>().value_or(0.0);
-    } else if (const auto* s = node.as_string()) {
+    if (w.node.is_number()) {
+      v = w.node.value<double>().value_or(0.0);
+    } else if (const auto* s = w.node.as_string()) {
       Quantity q;
       try {
         q = parse_quantity(s->get());
       } catch (const UnitError& e) {
-        error(at, key_path, render(node), prefix + e.what());
+        error(w, (number ? "expected a number: " : prefix) + e.what());
         return std::nullopt;
       }
       // A unitless string ("0.5") is a number in SI, like an unquoted number; a unit must be the
       // key's ("3 rad" is no length).
-      if (q.dim != key.dim && !q.bare) {
-        error(at, key_path, render(node),
-              fmt::format("{}expected {}, got {}", prefix, expected_phrase(key),
-                          dimension_phrase(q.dim)));
+      if (number ? q.dim != dims::none : (q.dim != w.key.dim && !q.bare)) {
+        error(w, fmt::format("{}expected {}, got {}", prefix,
+                             number ? "a number without unit" : expected_phrase(w.key),
+                             dimension_phrase(q.dim)));
         return std::nullopt;
       }
       v = q.si;
     } else {
-      wrong_type(key, node, key_path, at, prefix);
+      wrong_type(w, prefix);
       return std::nullopt;
     }
-    if (!check_range(key, v, node, key_path, at, prefix)) return std::nullopt;
+    if (!check_range(w, v, prefix)) return std::nullopt;
     return v;
   }
 
-  std::optional<toml::array> vector_value(const Key& key, const toml::node& node,
-                                          const std::string& key_path,
-                                          const toml::source_region& at) {
-    const auto* array = node.as_array();
-    if (!array) {
-      wrong_type(key, node, key_path, at);
+  std::optional<toml::array> vector_value(const Written& w) {
+    const auto* array = typed<toml::array>(w);
+    if (!array) return std::nullopt;
+    if (array->size() != static_cast<std::size_t>(w.key.components)) {
+      error(w, fmt::format("expected {}, got {} component{}", expected_phrase(w.key), array->size(),
+                           array->size() == 1 ? "" : "s"));
       return std::nullopt;
     }
-    if (array->size() != static_cast<std::size_t>(key.components)) {
-      error(at, key_path, render(node),
-            fmt::format("expected {}, got {} component{}", expected_phrase(key), array->size(),
-                        array->size() == 1 ? "" : "s"));
-      return std::nullopt;
-    }
+    Key scalar = w.key;
+    scalar.kind = ValueKind::quantity;
     toml::array result;
     bool ok = true;
     for (std::size_t i = 0; i < array->size(); ++i) {
       const toml::node& component = *array->get(i);
-      const std::string prefix = fmt::format("component {} of {}: ", i + 1, key.components);
-      Key scalar = key;
-      scalar.kind = ValueKind::quantity;
       const std::optional<double> v =
-          quantity_value(scalar, component, key_path, region_of(component, at), prefix);
+          scalar_value({scalar, component, w.path, region_of(component, w.at)},
+                       fmt::format("component {} of {}: ", i + 1, w.key.components));
       ok = ok && v.has_value();
       if (v) result.push_back(*v);
     }
@@ -363,73 +368,27 @@ class Validator {
     return result;
   }
 
-  // A dimensionless number; a string is accepted when it parses as a unitless number ("0.3").
-  std::optional<double> number_value(const Key& key, const toml::node& node,
-                                     const std::string& key_path, const toml::source_region& at) {
-    double v = 0.0;
-    if (node.is_number()) {
-      v = node.value<double>().value_or(0.0);
-    } else if (const auto* s = node.as_string()) {
-      Quantity q;
-      try {
-        q = parse_quantity(s->get());
-      } catch (const UnitError& e) {
-        error(at, key_path, render(node), fmt::format("expected a number: {}", e.what()));
-        return std::nullopt;
-      }
-      if (q.dim != dims::none) {
-        error(at, key_path, render(node),
-              fmt::format("expected a number without unit, got {}", dimension_phrase(q.dim)));
-        return std::nullopt;
-      }
-      v = q.si;
-    } else {
-      wrong_type(key, node, key_path, at);
-      return std::nullopt;
-    }
-    if (!check_range(key, v, node, key_path, at, "")) return std::nullopt;
-    return v;
-  }
-
-  std::optional<std::int64_t> integer_value(const Key& key, const toml::node& node,
-                                            const std::string& key_path,
-                                            const toml::source_region& at) {
-    const auto* i = node.as_integer();
-    if (!i) {
-      wrong_type(key, node, key_path, at);
-      return std::nullopt;
-    }
-    if (!check_range(key, static_cast<double>(i->get()), node, key_path, at, "")) {
-      return std::nullopt;
-    }
+  std::optional<std::int64_t> integer_value(const Written& w) {
+    const auto* i = typed<std::int64_t>(w);
+    if (!i) return std::nullopt;
+    if (!check_range(w, static_cast<double>(i->get()), "")) return std::nullopt;
     return i->get();
   }
 
-  std::optional<std::string> choice_value(const Key& key, const toml::node& node,
-                                          const std::string& key_path,
-                                          const toml::source_region& at) {
-    const auto* s = node.as_string();
-    if (!s) {
-      wrong_type(key, node, key_path, at);
-      return std::nullopt;
-    }
-    if (contains(key.choices, s->get())) return s->get();
-    std::string message = "invalid choice: expected one of " + quoted_list(key.choices);
-    if (const std::optional<std::string> suggestion = closest(s->get(), key.choices)) {
+  std::optional<std::string> choice_value(const Written& w) {
+    const std::optional<std::string> s = typed_value<std::string>(w);
+    if (!s || contains(w.key.choices, *s)) return s;
+    std::string message = "invalid choice: expected one of " + quoted_list(w.key.choices);
+    if (const std::optional<std::string> suggestion = closest(*s, w.key.choices)) {
       message += fmt::format("; did you mean {}?", quoted(*suggestion));
     }
-    error(at, key_path, render(node), std::move(message));
+    error(w, std::move(message));
     return std::nullopt;
   }
 
-  std::optional<toml::array> string_list_value(const Key& key, const toml::node& node,
-                                               const std::string& key_path,
-                                               const toml::source_region& at) {
-    const auto* array = node.as_array();
-    if (!array) {
-      wrong_type(key, node, key_path, at);
-      return std::nullopt;
-    }
+  std::optional<toml::array> string_list_value(const Written& w) {
+    const auto* array = typed<toml::array>(w);
+    if (!array) return std::nullopt;
     toml::array result;
     bool ok = true;
     for (std::size_t i = 0; i < array->size(); ++i) {
@@ -437,7 +396,7 @@ class Validator {
       if (const auto* s = item.as_string()) {
         result.push_back(s->get());
       } else {
-        error(region_of(item, at), key_path, render(item),
+        error(region_of(item, w.at), w.path, render(item),
               fmt::format("element {}: expected a string, got {}", i + 1, type_phrase(item)));
         ok = false;
       }

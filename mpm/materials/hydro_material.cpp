@@ -199,13 +199,8 @@ StressUpdate HydroMaterial::update_stress(Particles& P, ParticleRange r,
             : signal_speed(P, static_cast<std::size_t>(p), st.pe, st.fl);
     signal = std::max(signal, c);
   }
-  StressUpdate result;
-  result.max_signal_speed = signal;
-  if (first_bad != INT64_MAX) {
-    result.bad_particle = first_bad;
-    result.problem = "non-positive volume, or non-finite stress or internal energy";
-  }
-  return result;
+  return StressUpdate::of(signal, first_bad,
+                          "non-positive volume, or non-finite stress or internal energy");
 }
 
 // Deviatoric stress: Jaumann-rate elastic trial, then (Johnson-Cook) radial return. Adds the

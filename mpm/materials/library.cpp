@@ -1,112 +1,99 @@
 #include "mpm/materials/library.hpp"
 
+#include <array>
+
 namespace hvi::mpm {
 namespace {
 
 constexpr double GPa = 1e9, MPa = 1e6, g_cm3 = 1e3;
 
-// The paper's aluminium alloys share the Johnson-Cook strength parameters of its Tables 1 and 4.
-JohnsonCookStrength paper_aluminium_strength() {
-  JohnsonCookStrength jc;
-  jc.A = 265 * MPa;
-  jc.B = 426 * MPa;
-  jc.n = 0.34;
-  jc.C = 0.015;
-  jc.m = 1.0;
-  jc.melt_temperature = 775;
-  jc.room_temperature = 293;
-  return jc;
+// A metal as its source publishes it, in the units sources use. A new library material is one
+// more row of `published_metals` below.
+struct Metal {
+  const char* name;
+  const char* source;
+  double density;         // g/cm^3
+  double youngs_modulus;  // GPa
+  double poisson_ratio;
+  double room_temperature;                     // K: the initial temperature and Johnson-Cook's T_r
+  std::array<double, 6> strength;              // Johnson-Cook A (MPa), B (MPa), n, C, m, T_melt (K)
+  std::optional<std::array<double, 3>> shock;  // Mie-Gruneisen c0 (m/s), s, Gamma0
+  std::optional<std::array<double, 5>> damage;  // Johnson-Cook D1..D5
+  std::optional<double> max_principal_stress;   // sigma_max, MPa
+  double specific_heat;                         // J/(kg K)
+};
+
+// The paper's aluminium alloys share the Johnson-Cook strength of its Tables 1 and 4, its
+// Poisson ratio, shock slope and Gruneisen coefficient; they differ in density, modulus, sound
+// speed and failure model.
+Metal paper_aluminium(const char* name, const char* source, double rho, double E, double c0,
+                      std::optional<std::array<double, 5>> damage,
+                      std::optional<double> sigma_max) {
+  const std::array<double, 6> strength{265, 426, 0.34, 0.015, 1.0, 775};
+  const std::array<double, 3> shock{c0, 1.34, 2.0};
+  return {name, source, rho, E, 0.33, 293, strength, shock, damage, sigma_max, 875};
 }
 
-LibraryMaterial paper_aluminium(const char* name, const char* source, double rho, double E,
-                                double c0, std::optional<JohnsonCookDamage> damage,
-                                std::optional<double> sigma_max) {
+std::vector<Metal> published_metals() {
+  using D = std::array<double, 5>;
+  using Shock = std::array<double, 3>;
+  constexpr auto none = std::nullopt;
+  // clang-format off
+  return {
+      // Table 1 (validation models).
+      paper_aluminium("Al2017", "paper Table 1 (projectile, validation)", 2.79, 73, 5328,
+                      none, 1580),
+      paper_aluminium("Al2024-T81", "paper Table 1 (facesheets, validation)", 2.77, 75, 5330,
+                      none, 1500),
+      paper_aluminium("Al5052-H19", "paper Table 1 (honeycomb core, validation)", 2.68, 73, 5240,
+                      D{0.13, 0.13, -1.50, 0.011, 0.0}, none),
+      // Table 4 (parameter-study models).
+      paper_aluminium("Al6061", "paper Table 4 (projectile and facesheets, study)", 2.77, 75, 5350,
+                      D{-0.77, 1.45, -0.47, 0.0, 1.6}, none),
+      paper_aluminium("Al5052", "paper Table 4 (honeycomb core, study)", 2.68, 73, 5350,
+                      D{0.13, 0.13, -1.50, 0.011, 0.0}, none),
+      // OFHC copper and 4340 steel: Johnson & Cook (1983, 1985) strength and damage; Steinberg's
+      // shock data.
+      {"OFHC-Cu", "Johnson & Cook 1983/1985; Steinberg 1996 (Us-up)", 8.96, 124, 0.34, 293,
+       {90, 292, 0.31, 0.025, 1.09, 1356}, Shock{3940, 1.49, 2.02},
+       D{0.54, 4.89, -3.03, 0.014, 1.12}, none, 383},
+      {"4340-steel", "Johnson & Cook 1983/1985; Steinberg 1996 (Us-up)", 7.83, 200, 0.29, 293,
+       {792, 510, 0.26, 0.014, 1.03, 1793}, Shock{4578, 1.33, 1.67},
+       D{0.05, 3.44, -2.12, 0.002, 0.61}, none, 477},
+      // 42CrMo4 steel of the DynELA/Abaqus Taylor-bar code-to-code benchmark (no EOS data: the
+      // benchmark uses the elastic bulk response).
+      {"42CrMo4", "DynELA/Abaqus Taylor-bar benchmark", 7.83, 206.9, 0.3, 293.15,
+       {806, 614, 0.168, 0.0089, 1.1, 1813.15}, none, none, none, 460},
+  };
+  // clang-format on
+}
+
+LibraryMaterial to_si(const Metal& metal) {
   LibraryMaterial m;
-  m.name = name;
-  m.source = source;
+  m.name = metal.name;
+  m.source = metal.source;
   HydroModels& p = m.parameters;
-  p.density = rho * g_cm3;
-  p.youngs_modulus = E * GPa;
-  p.poisson_ratio = 0.33;
-  p.initial_temperature = 293;
-  p.johnson_cook = paper_aluminium_strength();
-  p.eos = MieGruneisen{p.density, c0, 1.34, 2.0};
-  p.damage = damage;
-  if (sigma_max) p.max_principal_stress = *sigma_max * MPa;
-  m.specific_heat = 875;
+  p.density = metal.density * g_cm3;
+  p.youngs_modulus = metal.youngs_modulus * GPa;
+  p.poisson_ratio = metal.poisson_ratio;
+  p.initial_temperature = metal.room_temperature;
+  const auto& [A, B, n, C, m_exponent, melt] = metal.strength;
+  p.johnson_cook =
+      JohnsonCookStrength{A * MPa, B * MPa, n, C, m_exponent, melt, metal.room_temperature, 1.0};
+  if (metal.shock)
+    p.eos = MieGruneisen{p.density, (*metal.shock)[0], (*metal.shock)[1], (*metal.shock)[2]};
+  if (metal.damage) {
+    const auto& [D1, D2, D3, D4, D5] = *metal.damage;
+    p.damage = JohnsonCookDamage{D1, D2, D3, D4, D5};
+  }
+  if (metal.max_principal_stress) p.max_principal_stress = *metal.max_principal_stress * MPa;
+  m.specific_heat = metal.specific_heat;
   return m;
-}
-
-JohnsonCookDamage jc_damage(double D1, double D2, double D3, double D4, double D5) {
-  JohnsonCookDamage d;
-  d.D1 = D1;
-  d.D2 = D2;
-  d.D3 = D3;
-  d.D4 = D4;
-  d.D5 = D5;
-  return d;
 }
 
 std::vector<LibraryMaterial> make_library() {
   std::vector<LibraryMaterial> lib;
-  // Table 1 (validation models).
-  lib.push_back(paper_aluminium("Al2017", "paper Table 1 (projectile, validation)", 2.79, 73, 5328,
-                                std::nullopt, 1580));
-  lib.push_back(paper_aluminium("Al2024-T81", "paper Table 1 (facesheets, validation)", 2.77, 75,
-                                5330, std::nullopt, 1500));
-  lib.push_back(paper_aluminium("Al5052-H19", "paper Table 1 (honeycomb core, validation)", 2.68,
-                                73, 5240, jc_damage(0.13, 0.13, -1.50, 0.011, 0.0), std::nullopt));
-  // Table 4 (parameter-study models).
-  lib.push_back(paper_aluminium("Al6061", "paper Table 4 (projectile and facesheets, study)", 2.77,
-                                75, 5350, jc_damage(-0.77, 1.45, -0.47, 0.0, 1.6), std::nullopt));
-  lib.push_back(paper_aluminium("Al5052", "paper Table 4 (honeycomb core, study)", 2.68, 73, 5350,
-                                jc_damage(0.13, 0.13, -1.50, 0.011, 0.0), std::nullopt));
-  {
-    // OFHC copper: Johnson & Cook (1983, 1985) strength and damage; Steinberg's shock data.
-    LibraryMaterial m;
-    m.name = "OFHC-Cu";
-    m.source = "Johnson & Cook 1983/1985; Steinberg 1996 (Us-up)";
-    HydroModels& p = m.parameters;
-    p.density = 8.96 * g_cm3;
-    p.youngs_modulus = 124 * GPa;
-    p.poisson_ratio = 0.34;
-    p.johnson_cook = JohnsonCookStrength{90 * MPa, 292 * MPa, 0.31, 0.025, 1.09, 1356, 293, 1.0};
-    p.eos = MieGruneisen{p.density, 3940, 1.49, 2.02};
-    p.damage = jc_damage(0.54, 4.89, -3.03, 0.014, 1.12);
-    m.specific_heat = 383;
-    lib.push_back(m);
-  }
-  {
-    // 4340 steel: Johnson & Cook (1983, 1985); Steinberg's shock data.
-    LibraryMaterial m;
-    m.name = "4340-steel";
-    m.source = "Johnson & Cook 1983/1985; Steinberg 1996 (Us-up)";
-    HydroModels& p = m.parameters;
-    p.density = 7.83 * g_cm3;
-    p.youngs_modulus = 200 * GPa;
-    p.poisson_ratio = 0.29;
-    p.johnson_cook = JohnsonCookStrength{792 * MPa, 510 * MPa, 0.26, 0.014, 1.03, 1793, 293, 1.0};
-    p.eos = MieGruneisen{p.density, 4578, 1.33, 1.67};
-    p.damage = jc_damage(0.05, 3.44, -2.12, 0.002, 0.61);
-    m.specific_heat = 477;
-    lib.push_back(m);
-  }
-  {
-    // 42CrMo4 steel of the DynELA/Abaqus Taylor-bar code-to-code benchmark (no EOS data: the
-    // benchmark uses the elastic bulk response).
-    LibraryMaterial m;
-    m.name = "42CrMo4";
-    m.source = "DynELA/Abaqus Taylor-bar benchmark";
-    HydroModels& p = m.parameters;
-    p.density = 7830;
-    p.youngs_modulus = 206.9 * GPa;
-    p.poisson_ratio = 0.3;
-    p.initial_temperature = 293.15;
-    p.johnson_cook =
-        JohnsonCookStrength{806 * MPa, 614 * MPa, 0.168, 0.0089, 1.1, 1813.15, 293.15, 1.0};
-    m.specific_heat = 460;
-    lib.push_back(m);
-  }
+  for (const Metal& metal : published_metals()) lib.push_back(to_si(metal));
   return lib;
 }
 

@@ -19,18 +19,14 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/driver/cli_run.hpp"
+#include "tests/support/run_hvi.hpp"
+#include "tests/support/scene_text.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-using hvi::test::csv_rows;
-using hvi::test::expect_same_output;
-using hvi::test::read;
-using hvi::test::run;
-using hvi::test::scratch;
-using hvi::test::summary_number;
+using namespace hvi::test;  // the run helpers of tests/support/run_hvi.hpp
 
 const std::string hvi = HVI_BINARY;
 const std::string scene = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_spheres.toml";
@@ -399,19 +395,10 @@ TEST(Cli, TheHoleHistoryIsHviMeasuresAndSurvivesKeepingOnlyTheNewestSnapshots) {
 TEST(Cli, DisplacementProbeFollowsARigidTranslation) {
   const fs::path dir = scratch("probe");
   fs::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << R"(
-[run]
-end_time = "4 us"
-[grid]
-lower = ["0 mm", "0 mm", "0 mm"]
-upper = ["6 mm", "6 mm", "6 mm"]
-cell_size = "0.5 mm"
-[[material]]
-name = "al"
-density = "2.7 g/cm^3"
-youngs_modulus = "70 GPa"
-poisson_ratio = 0.33
-[[body]]
+  std::ofstream(dir / "scene.toml")
+      << hvi::test::run_and_grid("4 us", R"(["0 mm", "0 mm", "0 mm"])",
+                                 R"(["6 mm", "6 mm", "6 mm"])", "0.5 mm")
+      << hvi::test::elastic_aluminium("al") << R"([[body]]
 name = "block"
 material = "al"
 velocity = ["50 m/s", "0 m/s", "-250 m/s"]

@@ -22,15 +22,12 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/driver/cli_run.hpp"
+#include "tests/support/run_hvi.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using hvi::test::csv_rows;
-using hvi::test::run;
-using hvi::test::scratch;
-using hvi::test::summary_number;
+using namespace hvi::test;  // the run helpers of tests/support/run_hvi.hpp
 
 // What a run of the pair leaves: its probes.csv (columns step, time, deflection_20mm along x,
 // deflection_20mm_y) and its measured holes.

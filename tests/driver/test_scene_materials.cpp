@@ -4,20 +4,15 @@
 #include <gtest/gtest.h>
 
 #include "cases/scene/scene.hpp"
+#include "tests/support/scene_text.hpp"
 
 namespace hvi::scene {
 namespace {
 
 std::string scene_with(const std::string& material, const std::string& speed = "100 m/s") {
-  return R"(
-[run]
-end_time = "1 us"
-[grid]
-lower = ["0 mm", "0 mm", "0 mm"]
-upper = ["4 mm", "4 mm", "4 mm"]
-cell_size = "0.5 mm"
-[[material]]
-)" + material +
+  return hvi::test::run_and_grid("1 us", R"(["0 mm", "0 mm", "0 mm"])",
+                                 R"(["4 mm", "4 mm", "4 mm"])", "0.5 mm") +
+         "[[material]]\n" + material +
          R"(
 [[body]]
 name = "b"

@@ -16,6 +16,7 @@
 
 #include "cases/cli/sweep_command.hpp"
 #include "cases/scene/scene.hpp"
+#include "tests/support/run_hvi.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,17 +25,8 @@ namespace {
 const std::string hvi = HVI_BINARY;
 const std::string data = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/";
 
-int run(const std::string& args, const fs::path& log) {
-  const std::string cmd = hvi + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
+using hvi::test::read;
+using hvi::test::run_logged;
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> out;
@@ -113,7 +105,8 @@ TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
   fs::remove_all(two);
   const std::string study = data + "drift_study.toml";
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_ranks.log";
-  ASSERT_EQ(run("sweep " + study + " --out " + one.string() + " --threads 1", log), 0) << read(log);
+  ASSERT_EQ(run_logged("sweep " + study + " --out " + one.string() + " --threads 1", log), 0)
+      << read(log);
   const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
                               mpirun + " --oversubscribe -np 2 " + hvi + " sweep " + study +
                               " --out " + two.string() + " --threads 1 > " + log.string() + " 2>&1";
@@ -143,8 +136,9 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep.log";
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --threads 2", log),
-            0)
+  ASSERT_EQ(
+      run_logged("sweep " + data + "drift_study.toml --out " + out.string() + " --threads 2", log),
+      0)
       << read(log);
   auto rows = table(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 5u);
@@ -167,17 +161,18 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
 
   // Done runs are not run again: their rows (wall times included) are unchanged.
   const std::string before = read(out / "sweep.csv");
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string(), log), 0) << read(log);
+  ASSERT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string(), log), 0)
+      << read(log);
   EXPECT_NE(read(log).find("v200_r15: done"), std::string::npos) << read(log);
   EXPECT_EQ(read(out / "sweep.csv"), before);
 
   // A later end time in the study: every run is run on from its checkpoint (the sphere drifts
   // 0.1 mm more per 100 m/s), and the table is rebuilt.
   const double first_wall = std::stod(rows["v200_r15"]["wall_seconds"]);
-  ASSERT_EQ(
-      run("sweep " + data + "drift_study.toml --out " + out.string() + " --set run.end_time=3us",
-          log),
-      0)
+  ASSERT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string() +
+                           " --set run.end_time=3us",
+                       log),
+            0)
       << read(log);
   EXPECT_NE(read(log).find("v200_r15: running on to 3 us"), std::string::npos) << read(log);
   // The run's log names it, and keeps the first part above the second.
@@ -199,9 +194,9 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   EXPECT_EQ(extended.end_time, 3e-6);
 
   // Another output cadence is not another run.
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
-                    " --set run.end_time=3us --set output.interval=0.5us",
-                log),
+  EXPECT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string() +
+                           " --set run.end_time=3us --set output.interval=0.5us",
+                       log),
             0)
       << read(log);
   EXPECT_NE(read(log).find("v200_r15: done"), std::string::npos) << read(log);
@@ -212,9 +207,9 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
   const std::string measured = read(out / "sweep.csv");
   const std::string other_measure =
       R"( --set 'measure=[{name="back",kind="extent_min",axis="x"}]')";
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
-                    " --set run.end_time=3us" + other_measure,
-                log),
+  EXPECT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string() +
+                           " --set run.end_time=3us" + other_measure,
+                       log),
             0)
       << read(log);
   const std::string said = read(log);
@@ -228,20 +223,20 @@ TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
 
   // An earlier end time, or any other key changed, is refused before anything runs.
   const std::string after = read(out / "sweep.csv");
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string(), log), 2);
+  EXPECT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string(), log), 2);
   EXPECT_NE(read(log).find("ran to 3 us but the study now ends at 2 us"), std::string::npos)
       << read(log);
-  EXPECT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
-                    " --set run.end_time=3us --set grid.cfl=0.3",
-                log),
+  EXPECT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string() +
+                           " --set run.end_time=3us --set grid.cfl=0.3",
+                       log),
             2);
   EXPECT_NE(read(log).find("key 'grid.cfl' differs"), std::string::npos) << read(log);
   EXPECT_EQ(read(out / "sweep.csv"), after);
 
   // Run on with other measures, a run keeps its own: the sphere's front, 0.4 mm ahead per 100 m/s.
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
-                    " --set run.end_time=4us" + other_measure,
-                log),
+  ASSERT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string() +
+                           " --set run.end_time=4us" + other_measure,
+                       log),
             0)
       << read(log);
   EXPECT_NE(
@@ -260,11 +255,14 @@ TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep_only";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_only.log";
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() + " --only still", log),
-            0)
+  ASSERT_EQ(
+      run_logged("sweep " + data + "drift_study.toml --out " + out.string() + " --only still", log),
+      0)
       << read(log);
   ASSERT_EQ(
-      run("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1", log), 0)
+      run_logged("sweep " + data + "drift_study.toml --out " + out.string() + " --only v100_r1",
+                 log),
+      0)
       << read(log);
   const auto rows = table(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 2u) << read(out / "sweep.csv");
@@ -279,11 +277,12 @@ TEST(Sweep, RunsMadeOneAtATimeShareOneTable) {
 
   // A run continued by hand to a later end: the same sweep, its end time set to the run's, counts
   // it done and tables its new state (100 m/s x 3 us), not the row of its first sitting.
-  ASSERT_EQ(run("run --resume " + (out / "v100_r1").string() + " --set run.end_time=3us", log), 0)
+  ASSERT_EQ(
+      run_logged("run --resume " + (out / "v100_r1").string() + " --set run.end_time=3us", log), 0)
       << read(log);
-  ASSERT_EQ(run("sweep " + data + "drift_study.toml --out " + out.string() +
-                    " --only v100_r1 --set run.end_time=3us",
-                log),
+  ASSERT_EQ(run_logged("sweep " + data + "drift_study.toml --out " + out.string() +
+                           " --only v100_r1 --set run.end_time=3us",
+                       log),
             0)
       << read(log);
   EXPECT_NE(read(log).find("v100_r1: done"), std::string::npos) << read(log);
@@ -306,7 +305,8 @@ TEST(Sweep, TheConsoleSaysWhyARunStoppedOrFailed) {
       << "[[run]]\nname = \"still\"\n"
       << "set = [\"body.ball.velocity=[2000, 0, 0]\", \"run.max_steps=3\"]\n";
   ASSERT_EQ(
-      run("sweep " + (dir / "stopped.toml").string() + " --out " + (dir / "stopped").string(), log),
+      run_logged(
+          "sweep " + (dir / "stopped.toml").string() + " --out " + (dir / "stopped").string(), log),
       3)
       << read(log);
   std::string console = read(log);
@@ -324,7 +324,8 @@ TEST(Sweep, TheConsoleSaysWhyARunStoppedOrFailed) {
       << "[[run]]\nname = \"unstable\"\n"
       << "set = [\"grid.shape_function=linear\", \"grid.scheme=usl\"]\n";
   ASSERT_EQ(
-      run("sweep " + (dir / "failed.toml").string() + " --out " + (dir / "failed").string(), log),
+      run_logged("sweep " + (dir / "failed.toml").string() + " --out " + (dir / "failed").string(),
+                 log),
       3)
       << read(log);
   console = read(log);
@@ -350,7 +351,8 @@ TEST(Sweep, ABadLevelStopsTheSweepBeforeAnythingRuns) {
   std::ofstream(dir / "study.toml") << study;
   const fs::path out = dir / "out";
   const fs::path log = dir / "log.txt";
-  EXPECT_EQ(run("sweep " + (dir / "study.toml").string() + " --out " + out.string(), log), 2);
+  EXPECT_EQ(run_logged("sweep " + (dir / "study.toml").string() + " --out " + out.string(), log),
+            2);
   EXPECT_NE(read(log).find("body.ball.sphere.radius"), std::string::npos) << read(log);
   EXPECT_NE(read(log).find("v100_r15"), std::string::npos) << read(log);  // the first run it is in
   EXPECT_FALSE(fs::exists(out));
@@ -379,13 +381,13 @@ TEST(Sweep, ShippedPaperStudiesResolve) {
   for (const std::string study : {"validation/printed.toml", "validation/foil.toml",
                                   "study/study.toml", "structure/structure.toml"})
     for (const std::string resolution : {"coarse", "paper"})
-      EXPECT_EQ(run("sweep " + cases + study + " --out " + out.string() +
-                        " --list --set resolution=" + resolution,
-                    log),
+      EXPECT_EQ(run_logged("sweep " + cases + study + " --out " + out.string() +
+                               " --list --set resolution=" + resolution,
+                           log),
                 0)
           << study << " " << resolution << ": " << read(log);
   for (const std::string study : {"study/front_hole_knobs.toml", "study/front_hole_fine.toml"})
-    EXPECT_EQ(run("sweep " + cases + study + " --out " + out.string() + " --list", log), 0)
+    EXPECT_EQ(run_logged("sweep " + cases + study + " --out " + out.string() + " --list", log), 0)
         << study << ": " << read(log);
   EXPECT_FALSE(fs::exists(out));  // listing writes nothing
 }

@@ -21,6 +21,7 @@
 #include "cases/run/build_solver.hpp"
 #include "cases/scene/scene.hpp"
 #include "geometry/mesh_solid.hpp"
+#include "tests/support/files.hpp"
 
 namespace hvi {
 namespace {
@@ -29,11 +30,7 @@ namespace fs = std::filesystem;
 const fs::path source = HVI_SOURCE_DIR;
 const fs::path corpus = source / "tests/fuzz/corpus";
 
-std::string read(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p, std::ios::binary).rdbuf();
-  return s.str();
-}
+using hvi::test::read;
 
 struct Tally {
   int refused = 0, accepted = 0;

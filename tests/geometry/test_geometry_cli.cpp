@@ -13,69 +13,36 @@
 #include <gtest/gtest.h>
 
 #include "mpm/io/hdf5_file.hpp"
+#include "tests/support/run_hvi.hpp"
+#include "tests/support/scene_text.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string hvi = HVI_BINARY;
 const std::string source = HVI_SOURCE_DIR;
 
-int run(const std::string& args, std::string* out = nullptr, std::string* err = nullptr) {
-  // Files of this test alone: ctest runs the tests of this file in parallel.
-  const std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
-  const fs::path o = fs::path(testing::TempDir()) / ("hvi_geometry_stdout_" + test + ".txt");
-  const fs::path e = fs::path(testing::TempDir()) / ("hvi_geometry_stderr_" + test + ".txt");
-  const int status =
-      std::system((hvi + " " + args + " > " + o.string() + " 2> " + e.string()).c_str());
-  auto read = [](const fs::path& p) {
-    std::stringstream s;
-    s << std::ifstream(p).rdbuf();
-    return s.str();
-  };
-  if (out) *out = read(o);
-  if (err) *err = read(e);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using hvi::test::run;
 
 // A small study panel (half model, 12 x 6 mm) with a refined zone and a 3 mm sphere.
-const std::string scene_text = R"(
-[run]
-end_time = "1 us"
-[grid]
-lower = ["-6 mm", "0 mm", "-16 mm"]
-upper = ["6 mm", "6 mm", "4 mm"]
-cell_size = "0.25 mm"
-[[boundary]]
+const std::string scene_text = hvi::test::run_and_grid("1 us", R"(["-6 mm", "0 mm", "-16 mm"])",
+                                                       R"(["6 mm", "6 mm", "4 mm"])", "0.25 mm") +
+                               R"([[boundary]]
 face = "y-"
 type = "symmetry"
-[[material]]
-name = "Al6061"
-library = "Al6061"
-[[material]]
-name = "Al5052"
-library = "Al5052"
-[[body]]
+)" + hvi::test::study_materials() +
+                               R"([[body]]
 name = "projectile"
 material = "Al6061"
 velocity = [0, 0, -4500]
 sphere = { center = ["0 mm", "0 mm", "1.75 mm"], radius = "1.5 mm" }
 clip = { lower = ["-6 mm", "0 mm", "-16 mm"], upper = ["6 mm", "6 mm", "4 mm"] }
-[[panel]]
-name = "panel"
-front_material = "Al6061"
-core_material = "Al5052"
-rear_material = "Al6061"
-front_thickness = "0.5 mm"
-rear_thickness = "0.5 mm"
-wall_thickness = "0.05 mm"
-cell_diameter = "3 mm"
-core_height = "14.2 mm"
-lower = ["-6 mm", "-6 mm"]
-upper = ["6 mm", "6 mm"]
-top = "0 mm"
+)" +
+                               hvi::test::PanelText{.name = "panel", .more = R"(top = "0 mm"
 clip = { lower = ["-6 mm", "0 mm", "-16 mm"], upper = ["6 mm", "6 mm", "4 mm"] }
-[[refinement]]
+)"}
+                                   .text() +
+                               R"([[refinement]]
 factor = 2
 box = { lower = ["-3 mm", "0 mm", "-16 mm"], upper = ["3 mm", "3 mm", "4 mm"] }
 )";
@@ -92,7 +59,7 @@ TEST(GeometryCommand, WritesSurfacesPointsAndTable) {
   std::string stdout_text;
   ASSERT_EQ(run("geometry " + write_scene("panel.toml", scene_text).string() + " --out " +
                     out.string() + " --threads 2",
-                &stdout_text),
+                nullptr, &stdout_text),
             0);
   EXPECT_NE(stdout_text.find("closed, outward, no self-intersection"), std::string::npos)
       << stdout_text;
@@ -144,7 +111,7 @@ TEST(GeometryCommand, RefusedSurfaceWritesNothing) {
   fs::remove_all(out);
   std::string err;
   EXPECT_EQ(run("geometry " + write_scene("refused.toml", text).string() + " --out " + out.string(),
-                nullptr, &err),
+                &err),
             2);
   EXPECT_NE(err.find("key 'body.projectile.mesh.file'"), std::string::npos) << err;
   EXPECT_NE(err.find("not closed: 4 border edges"), std::string::npos) << err;
@@ -154,18 +121,18 @@ TEST(GeometryCommand, RefusedSurfaceWritesNothing) {
 
 // The paper's scenes, coarsened so that the check is quick (the full ones: test_geometry_scale).
 TEST(GeometryCommand, PaperScenesAreValid) {
-  std::string out;
+  std::string err;
   EXPECT_EQ(run("check " + source +
                     "/cases/paper/study/panel.toml --set grid.cell_size=\"1 mm\" --set "
                     "refinement.impact.factor=2",
-                &out),
+                &err),
             0)
-      << out;
+      << err;
   EXPECT_EQ(
       run("check " + source + "/cases/paper/validation/panel.toml --set grid.cell_size=\"0.5 mm\"",
-          &out),
+          &err),
       0)
-      << out;
+      << err;
 }
 
 }  // namespace

@@ -13,44 +13,22 @@
 #include "cases/scene/scene.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/surface.hpp"
+#include "tests/support/scene_text.hpp"
 
 namespace hvi {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string head = R"(
-[run]
-end_time = "1 us"
-[grid]
-lower = ["-6 mm", "-6 mm", "-18 mm"]
-upper = ["6 mm", "6 mm", "4 mm"]
-cell_size = "0.25 mm"
-[[material]]
-name = "Al6061"
-library = "Al6061"
-[[material]]
-name = "Al5052"
-library = "Al5052"
-)";
+const std::string head = test::run_and_grid("1 us", R"(["-6 mm", "-6 mm", "-18 mm"])",
+                                            R"(["6 mm", "6 mm", "4 mm"])", "0.25 mm") +
+                         test::study_materials();
 
-const std::string panel = R"(
-[[panel]]
-name = "p"
-front_material = "Al6061"
-core_material = "Al5052"
-rear_material = "Al6061"
-front_thickness = "0.5 mm"
-rear_thickness = "0.5 mm"
-wall_thickness = "0.05 mm"
-cell_diameter = "3 mm"
-core_height = "14.2 mm"
-lower = ["-6 mm", "-6 mm"]
-upper = ["6 mm", "6 mm"]
-top = "0 mm"
+const std::string panel = test::PanelText{.more = R"(top = "0 mm"
 rotation = "30 deg"
 clip = { lower = ["-6 mm", "0 mm", "-18 mm"], upper = ["6 mm", "6 mm", "4 mm"] }
-)";
+)"}
+                              .text();
 
 const std::string cad = R"(
 [[body]]

@@ -20,6 +20,7 @@
 #include "cases/scene/scene.hpp"
 #include "geometry/mesh_solid.hpp"
 #include "tests/driver/scene_errors.hpp"
+#include "tests/support/scene_text.hpp"
 
 namespace hvi {
 namespace {
@@ -27,33 +28,18 @@ namespace {
 namespace fs = std::filesystem;
 using scene::test::error_for;
 
-const std::string head = R"(
-[run]
-end_time = "1 us"
-[grid]
-lower = ["-6 mm", "-6 mm", "-18 mm"]
-upper = ["6 mm", "6 mm", "4 mm"]
-cell_size = "0.5 mm"
-[[material]]
-name = "Al"
-library = "Al6061"
-)";
+const std::string head = test::run_and_grid("1 us", R"(["-6 mm", "-6 mm", "-18 mm"])",
+                                            R"(["6 mm", "6 mm", "4 mm"])", "0.5 mm") +
+                         test::library_material("Al", "Al6061");
 
-const std::string panel = R"(
-[[panel]]
-name = "p"
-front_material = "Al"
-core_material = "Al"
-rear_material = "Al"
-front_thickness = "0.5 mm"
-rear_thickness = "0.5 mm"
-wall_thickness = "0.05 mm"
-cell_diameter = "3 mm"
-core_height = "10 mm"
-lower = ["-5 mm", "-5 mm"]
-upper = ["5 mm", "5 mm"]
-top = "0 mm"
-)";
+const std::string panel = test::PanelText{.front = "Al",
+                                          .core = "Al",
+                                          .rear = "Al",
+                                          .core_height = "10 mm",
+                                          .lower = R"(["-5 mm", "-5 mm"])",
+                                          .upper = R"(["5 mm", "5 mm"])",
+                                          .more = "top = \"0 mm\"\n"}
+                              .text();
 
 std::string with(std::string text, const std::string& from, const std::string& to) {
   text.replace(text.find(from), from.size(), to);

@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/files.hpp"
+
 extern char** environ;
 
 namespace {
@@ -61,11 +63,7 @@ std::vector<std::string> with_out(std::vector<std::string> args, const fs::path&
   return args;
 }
 
-std::string read(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p, std::ios::binary).rdbuf();
-  return s.str();
-}
+using hvi::test::read;
 
 TEST(KillResume, KilledTwiceTheDemoEndsAsIfNeverKilled) {
   const fs::path root = fs::path(testing::TempDir()) / "hvi_kill_resume";

@@ -10,24 +10,16 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/run_hvi.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string hvi = HVI_BINARY;
 const std::string scene = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/drift.toml";
 
-int run(const std::string& args, const fs::path& log) {
-  const std::string command = hvi + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
+using hvi::test::read;
+using hvi::test::run_logged;
 
 TEST(ResumeGuard, AChangedStateIsRefusedAndALaterEndTimeResumes) {
   const fs::path dir = fs::path(testing::TempDir()) / "hvi_resume_guard";
@@ -35,12 +27,14 @@ TEST(ResumeGuard, AChangedStateIsRefusedAndALaterEndTimeResumes) {
   fs::remove_all(dir);
   // Stopped after 5 steps with a checkpoint.
   ASSERT_EQ(
-      run("run " + scene + " --out " + dir.string() + " --threads 1 --set run.max_steps=5", log), 0)
+      run_logged("run " + scene + " --out " + dir.string() + " --threads 1 --set run.max_steps=5",
+                 log),
+      0)
       << read(log);
   const std::string resolved = read(dir / "scene.resolved.toml");
   const auto checkpoint_time = fs::last_write_time(dir / "checkpoint.h5");
 
-  EXPECT_EQ(run("run --resume " + dir.string() + " --set grid.cell_size=0.3mm", log), 2);
+  EXPECT_EQ(run_logged("run --resume " + dir.string() + " --set grid.cell_size=0.3mm", log), 2);
   EXPECT_NE(read(log).find("the scene differs from the one its checkpoint was computed with"),
             std::string::npos)
       << read(log);
@@ -52,11 +46,13 @@ TEST(ResumeGuard, AChangedStateIsRefusedAndALaterEndTimeResumes) {
   ASSERT_NE(at, std::string::npos) << resolved;
   edited.replace(at, 14, "density = 7800");
   std::ofstream(dir / "scene.resolved.toml") << edited;
-  EXPECT_EQ(run("run --resume " + dir.string(), log), 2) << read(log);
+  EXPECT_EQ(run_logged("run --resume " + dir.string(), log), 2) << read(log);
   std::ofstream(dir / "scene.resolved.toml") << resolved;
 
   EXPECT_EQ(
-      run("run --resume " + dir.string() + " --set run.end_time=3us --set run.max_steps=0", log), 0)
+      run_logged("run --resume " + dir.string() + " --set run.end_time=3us --set run.max_steps=0",
+                 log),
+      0)
       << read(log);
 }
 
@@ -67,12 +63,14 @@ TEST(ResumeGuard, ADamagedCheckpointIsRefused) {
   const fs::path log = fs::path(testing::TempDir()) / "hvi_resume_damaged.log";
   fs::remove_all(dir);
   ASSERT_EQ(
-      run("run " + scene + " --out " + dir.string() + " --threads 1 --set run.max_steps=5", log), 0)
+      run_logged("run " + scene + " --out " + dir.string() + " --threads 1 --set run.max_steps=5",
+                 log),
+      0)
       << read(log);
   std::string bytes = read(dir / "checkpoint.h5");
   for (std::size_t k = 0; k < 64; ++k) bytes[bytes.size() / 2 + k] ^= '\xff';
   std::ofstream(dir / "checkpoint.h5", std::ios::binary) << bytes;
-  EXPECT_EQ(run("run --resume " + dir.string(), log), 2);
+  EXPECT_EQ(run_logged("run --resume " + dir.string(), log), 2);
   EXPECT_NE(read(log).find("checkpoint.h5"), std::string::npos) << read(log);
 }
 

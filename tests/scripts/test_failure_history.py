@@ -137,7 +137,7 @@ class FailureHistory(unittest.TestCase):
         self.assertIn("--body 'rear': the run's bodies are projectile, sheet", err)
         code, _, err = run_script(self.run_dir, "--body", "sheet", "--bin", "0.5 furlongs")
         self.assertEqual(code, 2)
-        self.assertIn("is not a length", err)
+        self.assertIn("--bin '0.5 furlongs': unknown unit 'furlongs'", err)
 
 
 def make_growing_run(root):

@@ -1,6 +1,6 @@
 #pragma once
 // Running the hvi binary from a test and reading what a run wrote: shared by the tests that drive
-// the command line end to end (test_cli.cpp, test_pure_versus_hybrid.cpp).
+// the command line end to end.
 #include <sys/wait.h>
 
 #include <cmath>
@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/files.hpp"
+
 namespace hvi::test {
 
 namespace fs = std::filesystem;
@@ -24,29 +26,27 @@ inline fs::path scratch(const std::string& name) {
   return p;
 }
 
-// Runs hvi with `args`; returns its exit code, stderr in `err`.
-inline int run(const std::string& args, std::string* err = nullptr) {
-  // One file per test: ctest runs the tests of a file in parallel.
-  const fs::path log =
-      fs::path(testing::TempDir()) /
-      ("hvi_cli_stderr_" +
-       std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt");
-  const std::string cmd = std::string(HVI_BINARY) + " " + args + " > /dev/null 2> " + log.string();
+// Runs hvi with `args`; returns its exit code, its stderr in `err` and its stdout in `out` (when
+// given).
+inline int run(const std::string& args, std::string* err = nullptr, std::string* out = nullptr) {
+  // Files of this test alone: ctest runs the tests of a file in parallel.
+  const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+  const std::string test = std::string(info->test_suite_name()) + "." + info->name();
+  const fs::path e = fs::path(testing::TempDir()) / ("hvi_stderr_" + test + ".txt");
+  const fs::path o = fs::path(testing::TempDir()) / ("hvi_stdout_" + test + ".txt");
+  const std::string cmd = std::string(HVI_BINARY) + " " + args + " > " +
+                          (out ? o.string() : std::string("/dev/null")) + " 2> " + e.string();
   const int status = std::system(cmd.c_str());
-  if (err) {
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    *err = s.str();
-  }
+  if (err) *err = read(e);
+  if (out) *out = read(o);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-inline std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+// Runs hvi with `args`, its stdout and stderr both into `log`; returns its exit code.
+inline int run_logged(const std::string& args, const fs::path& log) {
+  const std::string cmd = std::string(HVI_BINARY) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // A number of a run's summary.toml, at the top level or in [measures] (NaN when absent).
