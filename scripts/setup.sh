@@ -30,9 +30,14 @@ install_packages() {
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# HVI_BUILD_TYPE (default Release), HVI_CMAKE_ARGS and HVI_BUILD_TARGETS (default all) pick
+# another build: test_sanitizers.sh.
 build_hvi() {
-  cmake -S "$HVI_ROOT" -B "$HVI_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$HVI_BUILD" --parallel "$(nproc)"
+  # shellcheck disable=SC2086
+  cmake -S "$HVI_ROOT" -B "$HVI_BUILD" -DCMAKE_BUILD_TYPE="${HVI_BUILD_TYPE:-Release}" \
+    ${HVI_CMAKE_ARGS:-} >/dev/null
+  # shellcheck disable=SC2086
+  cmake --build "$HVI_BUILD" --parallel "$(nproc)" --target ${HVI_BUILD_TARGETS:-all}
 }
 
 install_packages

@@ -82,11 +82,13 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
   const double memory_limit = memory_bytes(max_memory);
   auto solver = hvi::driver::make_solver(scene);
   const auto hybrid = hvi::driver::make_hybrid(scene, *solver);
-  const auto counts = hvi::driver::add_bodies(scene, *solver, memory_limit);
+  std::vector<std::string> overlaps;
+  const auto counts = hvi::driver::add_bodies(scene, *solver, memory_limit, &overlaps);
   solver->initialise();
   if (hybrid) hybrid->record_reference_positions(*solver);
   fmt::print("{}: valid{}\n", path, scene.title.empty() ? "" : " — " + scene.title);
   for (const auto& w : scene.warnings) fmt::print("  warning: {}\n", w);
+  for (const auto& w : overlaps) fmt::print("  warning: {}\n", w);
   const auto& g = scene.grid;
   fmt::print(
       "  grid: {} x {} x {} cells of {:.4g} m from ({:.4g}, {:.4g}, {:.4g}) m; {} shape functions, "

@@ -69,8 +69,38 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
                                        std::move(body_names), std::move(boundaries));
 }
 
+namespace {
+
+// The points of body b (n from `first`) that lie inside the solid of a later body: bodies that
+// overlap at the start hold the overlap twice, and its mass counts twice.
+void find_overlaps(const scene::Scene& scene, const mpm::Particles& P, std::size_t first,
+                   std::size_t n, std::size_t b,
+                   const std::vector<std::unique_ptr<geometry::Solid>>& solids,
+                   std::vector<std::string>& warnings) {
+  for (std::size_t c = b + 1; c < solids.size(); ++c) {
+    const geometry::Bounds box = solids[c]->bounds();
+    std::size_t inside = 0;
+    double volume = 0, mass = 0;
+    for (std::size_t p = first; p < first + n; ++p) {
+      const geometry::Point x{P.position[3 * p], P.position[3 * p + 1], P.position[3 * p + 2]};
+      if (!box.contains(x) || !solids[c]->contains(x)) continue;
+      ++inside;
+      volume += P.volume[p];
+      mass += P.mass[p];
+    }
+    if (inside > 0)
+      warnings.push_back(fmt::format(
+          "bodies '{}' and '{}' overlap at the start: {} points of '{}' ({:.3g} m^3, {:.3g} kg) "
+          "lie inside '{}', which has points of its own there; the overlap's mass counts twice",
+          scene.bodies[b].name, scene.bodies[c].name, inside, scene.bodies[b].name, volume, mass,
+          scene.bodies[c].name));
+  }
+}
+
+}  // namespace
+
 std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver,
-                                    double max_memory) {
+                                    double max_memory, std::vector<std::string>* warnings) {
   mpm::Particles& P = solver.particles();
   std::vector<std::unique_ptr<geometry::Solid>> solids;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) solids.push_back(make_body_solid(scene, b));
@@ -80,7 +110,6 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
     const auto& body = scene.bodies[b];
     const double density = solver.materials()[body.material]->reference_density();
     const geometry::PointSet points = sample_body(scene, b, *solids[b]);
-    solids[b].reset();
     const std::size_t first = P.size(), n = points.size();
     P.resize(first + n);
     // GIMP particle domains: half the sampling spacing per axis (a thin-wall point is wide along
@@ -104,6 +133,8 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
       P.material[p] = static_cast<std::int64_t>(body.material);
     }
     counts.push_back(n);
+    if (warnings) find_overlaps(scene, P, first, n, b, solids, *warnings);
+    solids[b].reset();
   }
   return counts;
 }

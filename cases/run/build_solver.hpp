@@ -20,7 +20,10 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
 // of points per body. Throws scene::SceneError for a refused surface file.
 // Refuses (std::invalid_argument) bodies whose points would need more than `max_memory` bytes
 // (0: the memory the machine has available) before sampling any (memory_estimate.hpp).
+// Bodies that overlap at the start (a point of one inside another's solid: the overlap holds
+// points of both, and its mass counts twice) are named in `warnings`, when given.
 std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver,
-                                    double max_memory = 0);
+                                    double max_memory = 0,
+                                    std::vector<std::string>* warnings = nullptr);
 
 }  // namespace hvi::driver

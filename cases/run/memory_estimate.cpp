@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+
+#include <sys/resource.h>
 #include <sstream>
 #include <stdexcept>
 
@@ -66,23 +68,52 @@ double estimated_points(const scene::Scene& scene, std::size_t body, const geome
   return points + refined;
 }
 
-double available_memory() {
-  std::ifstream in("/proc/meminfo");
+namespace {
+
+// The first number of the line of `file` that starts with `key` (the whole file with key ""),
+// times `unit`; NaN if there is none.
+double number_in(const char* file, const std::string& key, double unit) {
+  std::ifstream in(file);
   std::string line;
   while (std::getline(in, line))
-    if (line.rfind("MemAvailable:", 0) == 0) {
-      std::istringstream words(line.substr(13));
-      double kb = 0;
-      words >> kb;
-      return kb * 1024.0;
+    if (line.rfind(key, 0) == 0) {
+      std::istringstream words(line.substr(key.size()));
+      double value = NAN;
+      words >> value;
+      return words ? value * unit : NAN;  // "max" (no limit) reads as nothing
     }
-  return 0.0;
+  return NAN;
+}
+
+}  // namespace
+
+MemoryLimit available_memory() {
+  MemoryLimit least;
+  const auto consider = [&](double bytes, const char* what) {
+    if (std::isfinite(bytes) && (least.bytes <= 0 || bytes < least.bytes))
+      least = {std::max(bytes, 1.0), what};
+  };
+  consider(number_in("/proc/meminfo", "MemAvailable:", 1024.0),
+           "the memory this machine has available");
+  rlimit as{};
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY)
+    consider(static_cast<double>(as.rlim_cur) - number_in("/proc/self/status", "VmSize:", 1024.0),
+             "what the address-space limit (ulimit -v) leaves");
+  consider(number_in("/sys/fs/cgroup/memory.max", "", 1.0) -
+               number_in("/sys/fs/cgroup/memory.current", "", 1.0),
+           "what this job's memory limit (cgroup memory.max) leaves");
+  const double v1 = number_in("/sys/fs/cgroup/memory/memory.limit_in_bytes", "", 1.0);
+  if (v1 < 1e18)  // v1 writes its "no limit" as a huge number
+    consider(v1 - number_in("/sys/fs/cgroup/memory/memory.usage_in_bytes", "", 1.0),
+             "what this job's memory limit (cgroup memory.limit_in_bytes) leaves");
+  return least;
 }
 
 void check_memory(const scene::Scene& scene,
                   const std::vector<std::unique_ptr<geometry::Solid>>& solids, double limit) {
   const bool machine = limit <= 0;
-  if (machine) limit = available_memory();
+  const MemoryLimit available = machine ? available_memory() : MemoryLimit{limit, "--max-memory"};
+  limit = available.bytes;
   if (limit <= 0) return;  // nothing known to hold it against
   double points = 0, largest = 0;
   std::size_t which = 0;
@@ -98,9 +129,8 @@ void check_memory(const scene::Scene& scene,
       "the bodies would hold about {:.3g} points, about {} at {:.0f} bytes a point, above {} ({}); "
       "the largest is '{}' with {:.3g} points at a spacing of grid.cell_size {:.3g} m over "
       "particles_per_cell {}{}: raise the cell size or lower the particles per cell",
-      points, bytes_text(bytes), bytes_per_point, bytes_text(limit),
-      machine ? "the memory this machine has available" : "--max-memory", body.name, largest,
-      scene.grid.cell_size, body.particles_per_cell,
+      points, bytes_text(bytes), bytes_per_point, bytes_text(limit), available.what, body.name,
+      largest, scene.grid.cell_size, body.particles_per_cell,
       scene.refinements.empty() ? "" : " and the [[refinement]] factors"));
 }
 

@@ -21,8 +21,15 @@ constexpr double bytes_per_point = 600.0;
 // they cover. Within a factor of about 2 of the count, and never far below it.
 double estimated_points(const scene::Scene& scene, std::size_t body, const geometry::Solid& solid);
 
-// The memory this machine has available now (MemAvailable), in bytes; 0 if unknown.
-double available_memory();
+// The memory hvi may still take, in bytes, and what sets it: the least of what the machine has
+// available (MemAvailable), what the address-space limit leaves (ulimit -v, less what hvi maps
+// already) and what the control group's limit leaves (a batch job's memory, cgroup v2 memory.max
+// or v1 memory.limit_in_bytes, less its use). Bytes 0 if none is known.
+struct MemoryLimit {
+  double bytes = 0;
+  std::string what;
+};
+MemoryLimit available_memory();
 
 // Throws std::invalid_argument if the bodies' points would need more than `limit` bytes (0: the
 // memory available), naming the estimate, the largest body and the keys that set its spacing.

@@ -86,8 +86,10 @@ std::vector<fs::path> node_files(const fs::path& run) {
   if (fs::is_directory(run / "far_field"))
     for (const auto& entry : fs::directory_iterator(run / "far_field")) {
       const std::string name = entry.path().filename().string();
-      if (name.starts_with("nodes_") && name.ends_with(".h5"))
-        files[std::stoll(name.substr(6, name.size() - 9))] = entry.path();
+      const std::string step = name.size() > 9 ? name.substr(6, name.size() - 9) : "";
+      if (name.starts_with("nodes_") && name.ends_with(".h5") && !step.empty() &&
+          step.find_first_not_of("0123456789") == std::string::npos)
+        files[std::stoll(step)] = entry.path();
     }
   if (files.empty())
     throw std::invalid_argument(

@@ -114,9 +114,10 @@ class SceneRun {
   const double end_;
   int threads_ = 0;
   std::unique_ptr<mpm::Solver> solver_;
-  std::vector<std::size_t> counts_;   // points per body, of a new run
-  mpm::io::CheckpointExtras extras_;  // of a resumed run
-  std::unique_ptr<Hybrid> hybrid_;    // only when the scene names a [far_field]
+  std::vector<std::size_t> counts_;    // points per body, of a new run
+  std::vector<std::string> overlaps_;  // bodies that overlap at the start
+  mpm::io::CheckpointExtras extras_;   // of a resumed run
+  std::unique_ptr<Hybrid> hybrid_;     // only when the scene names a [far_field]
   std::unique_ptr<Probes> probes_;
   std::optional<mpm::io::SnapshotWriter> snapshots_;
   const scene::MeasureSettings* holes_ = nullptr;  // the holes measure, if any
@@ -162,7 +163,7 @@ int SceneRun::build() {
       extras_ = mpm::io::read_checkpoint(dir_ / "checkpoint.h5", *solver_);
       check_same_state();
     } else {
-      counts_ = add_bodies(scene_, *solver_, options_.max_memory);
+      counts_ = add_bodies(scene_, *solver_, options_.max_memory, &overlaps_);
       solver_->initialise();
       if (hybrid_) hybrid_->record_reference_positions(*solver_);
     }
@@ -257,6 +258,7 @@ int SceneRun::start_at_zero() {
   mpm::Solver& s = *solver_;
   fmt::print("hvi: {}{}\n", scene_.file, scene_.title.empty() ? "" : " — " + scene_.title);
   for (const auto& w : scene_.warnings) fmt::print("  warning: {}\n", w);
+  for (const auto& w : overlaps_) fmt::print("  warning: {}\n", w);
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
     fmt::print("  body '{}': {} particles, material '{}'\n", scene_.bodies[b].name, counts_[b],
                scene_.materials[scene_.bodies[b].material].name);

@@ -6,7 +6,8 @@
 // 0), an angle given as a length. Surface files: OFF and PLY headers declaring more than the file
 // holds or negative counts, a face list count of 4e9 (std::bad_alloc), the texture variant STOFF
 // (a CGAL read past its buffer under AddressSanitizer), a NaN vertex in a binary STL (mass nan),
-// and a directory, FIFO, device or a NUL in the path given as the file.
+// and a directory, FIFO, device or a NUL in the path given as the file. Bodies that overlap at
+// the start (the overlap's mass counted twice) are named in a warning.
 #include <sys/stat.h>
 
 #include <cstdint>
@@ -14,9 +15,12 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <tuple>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "cases/run/build_solver.hpp"
 #include "cases/scene/scene.hpp"
 #include "geometry/mesh_solid.hpp"
 #include "tests/driver/scene_errors.hpp"
@@ -127,6 +131,28 @@ std::string refusal(const fs::path& file) {
     return e.what();
   }
   return "accepted";
+}
+
+// Box a is [0, 2] mm cubed and b [1, 3] x [0, 2] x [0, 2] mm, on
+// 0.5 mm cells with 2 points per cell and axis: a's points at x = 1.125 ... 1.875 mm (4 layers of
+// 8 x 8) lie in b, 4 mm^3 exactly; c, [3, 5] x [0, 2] x [0, 2] mm, only touches b.
+TEST(HostileScene, BodiesThatOverlapAreNamed) {
+  std::string text = test::run_and_grid("1 us", R"(["0 mm", "0 mm", "0 mm"])",
+                                        R"(["5 mm", "3 mm", "3 mm"])", "0.5 mm") +
+                     test::elastic_aluminium("al");
+  for (const auto& [name, x0, x1] : {std::tuple{"a", 0, 2}, {"b", 1, 3}, {"c", 3, 5}})
+    text += fmt::format(
+        "[[body]]\nname = \"{}\"\nmaterial = \"al\"\nbox = {{ lower = [\"{} mm\", \"0 mm\", "
+        "\"0 mm\"], upper = [\"{} mm\", \"2 mm\", \"2 mm\"] }}\n",
+        name, x0, x1);
+  const scene::Scene s = scene::parse_scene(text, "scene.toml", {});
+  auto solver = driver::make_solver(s);
+  std::vector<std::string> warnings;
+  driver::add_bodies(s, *solver, 0, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0],
+            "bodies 'a' and 'b' overlap at the start: 256 points of 'a' (4e-09 m^3, 1.08e-05 kg) "
+            "lie inside 'b', which has points of its own there; the overlap's mass counts twice");
 }
 
 TEST(HostileSurface, HeadersThatDeclareMoreThanTheFileHoldsAreRefused) {
