@@ -45,6 +45,34 @@ void check_counts(const std::string& path, long long vertices, long long faces,
                              vertices, faces, bytes));
 }
 
+// The next line of an OFF file that holds data (not blank, not a # comment); false at the end.
+bool next_data_line(std::istream& in, std::string& line) {
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') return true;
+  }
+  return false;
+}
+
+// Each OFF face line starts with its number of corners, which the reader allocates before it
+// reads them (a count of 4e9 once took 32 GB): at least 1 and at most the vertices. A file that
+// ends early is left to the reader, which says so.
+void check_off_faces(const std::string& path, std::istream& in, long long vertices,
+                     long long faces) {
+  std::string line;
+  std::getline(in, line);  // the rest of the counts line
+  for (long long v = 0; v < vertices; ++v)
+    if (!next_data_line(in, line)) return;
+  for (long long f = 0; f < faces; ++f) {
+    if (!next_data_line(in, line)) return;
+    std::istringstream words(line);
+    long long corners = 0;
+    if (words >> corners && (corners < 1 || corners > vertices))
+      refuse(path, fmt::format("face {} declares {} corners, of {} vertices (a damaged file)",
+                               f + 1, corners, vertices));
+  }
+}
+
 // OFF: the plain "OFF" header (or COFF, NOFF, CNOFF) and its counts; texture and binary variants
 // are refused (CGAL's scanner of the "ST" variant reads past its buffer).
 void check_off_header(const std::string& path, std::istream& in, std::uintmax_t bytes) {
@@ -56,6 +84,7 @@ void check_off_header(const std::string& path, std::istream& in, std::uintmax_t 
   long long vertices = 0, faces = 0;
   if (!(in >> vertices >> faces)) refuse(path, "no vertex and face counts after OFF");
   check_counts(path, vertices, faces, bytes);
+  check_off_faces(path, in, vertices, faces);
 }
 
 // PLY: the counts of its "element vertex" and "element face" lines.

@@ -19,8 +19,13 @@ targets=(hvi test_hostile_input test_fuzz test_memory_estimate test_resume_guard
 if [ "${1:-}" = "--all" ]; then targets=(all); fi
 HVI_BUILD_TARGETS="${targets[*]}" source "$root/scripts/setup.sh"
 supp="$root/tests/sanitizers"
-export ASAN_OPTIONS="detect_leaks=1:detect_stack_use_after_return=0:check_initialization_order=1"
+# allocator_may_return_null: an allocation too large for the machine throws std::bad_alloc, as it
+# does without the sanitizer (a surface file declaring 4e9 indices is refused by that message),
+# instead of ending the process.
+export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1:check_initialization_order=1"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="suppressions=$supp/ubsan.supp:print_stacktrace=1:halt_on_error=1:print_suppressions=0"
-# Only the tests of the executables built are listed; the Python tests run the sanitized hvi.
-ctest --test-dir "$HVI_BUILD" --output-on-failure -LE 'long|no_sanitize' --parallel "$(nproc)"
+# The test executables not built stand in ctest's list as <target>_NOT_BUILT: left out. The
+# Python tests run the sanitized hvi.
+ctest --test-dir "$HVI_BUILD" --output-on-failure -LE 'long|no_sanitize' -E '_NOT_BUILT$' \
+  --parallel "$(nproc)"
