@@ -5,10 +5,10 @@
 #
 #   scripts/test_sanitizers.sh         hvi and the tests of what users hand it (scenes, surface
 #                                      files, checkpoints, the fuzzers, the memory estimate) and
-#                                      of the particle core: what CI runs (about 15 minutes to build
+#                                      of the particle core: what CI runs (about 13 minutes to build
 #                                      on 2 cores)
-#   scripts/test_sanitizers.sh --all   the whole fast tier (about 25 minutes to build and 20 to
-#                                      run on 2 cores)
+#   scripts/test_sanitizers.sh --all   the whole fast tier (about 25 minutes to build on 2 cores;
+#                                      its tests run far longer than without the sanitizers)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export HVI_BUILD="${HVI_BUILD:-$root/build-sanitize}" HVI_BUILD_TYPE=Sanitize
