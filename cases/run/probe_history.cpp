@@ -146,7 +146,8 @@ ProbeReading far_field_history(const fs::path& run, const Point& p, int axis, do
     // The zone grew over the node: the points that took its place, by their undeformed positions.
     if (snapshots.empty())
       for (const fs::path& s : particle_snapshots(run))
-        snapshots.emplace_back(Points(s, false).time, s);
+        snapshots.emplace_back(
+            Hdf5File(s.string(), Hdf5File::Mode::read).read_double_attribute("time"), s);
     const auto closest = std::min_element(
         snapshots.begin(), snapshots.end(),
         [&](auto& a, auto& b) { return std::abs(a.first - time) < std::abs(b.first - time); });

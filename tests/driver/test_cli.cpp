@@ -403,12 +403,7 @@ name = "block"
 material = "al"
 velocity = ["50 m/s", "0 m/s", "-250 m/s"]
 box = { lower = ["2 mm", "2 mm", "3 mm"], upper = ["4 mm", "4 mm", "5 mm"] }
-[[measure]]
-name = "drop"
-kind = "displacement"
-point = ["3 mm", "3 mm", "4 mm"]
-axis = "z"
-)";
+)" << hvi::test::z_probe("drop", R"(["3 mm", "3 mm", "4 mm"])");
   ASSERT_EQ(run("run " + (dir / "scene.toml").string() + " --out " + (dir / "run").string() +
                 " --threads 2"),
             0);

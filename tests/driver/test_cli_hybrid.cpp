@@ -243,6 +243,18 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
       << across << " from " << probe[taken - 1][2];
   EXPECT_EQ(run("measure " + two.string()), 0);
   EXPECT_NE(read(two / "measurements.json").find("\"perforated\" : true"), std::string::npos);
+  // hvi probe at the probe's point: the node while the far field holds it (at t = 0 the run's
+  // own reading, exactly), then the points that took it over, by their undeformed positions.
+  std::string csv, err;
+  ASSERT_EQ(run("probe " + two.string() + " --point \"5 mm,0 mm,-4 mm\"", &err, &csv), 0) << err;
+  EXPECT_NE(err.find("(from t = "), std::string::npos) << err;
+  EXPECT_NE(err.find("the zone grown over it)"), std::string::npos) << err;
+  const fs::path probe_csv = two / "probe_history.csv";
+  std::ofstream(probe_csv) << csv;
+  const auto history = csv_rows(probe_csv);
+  ASSERT_EQ(history.size(), 5u);  // t = 0, 1, 2, 3, 4 us
+  EXPECT_EQ(history.front()[1], probe.front()[2]);
+  for (const auto& row : history) EXPECT_TRUE(std::isfinite(row[1])) << "t = " << row[0];
 }
 
 // The same growing hybrid with its limit at 5 mm: the damage reaches the zone's edge there at

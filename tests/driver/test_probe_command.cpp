@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/run_hvi.hpp"
+#include "tests/support/scene_text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -48,13 +49,8 @@ void expect_probe_rows(const std::vector<std::vector<double>>& probe,
 TEST(Probe, ReadsTheRunsOwnProbesAtItsSnapshots) {
   const fs::path dir = scratch("probe_hybrid");
   fs::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << read(hybrid) << R"(
-[[measure]]
-name = "zone_rear"
-kind = "displacement"
-point = ["1 mm", "1 mm", "-4 mm"]
-axis = "z"
-)";
+  std::ofstream(dir / "scene.toml") << read(hybrid) << "\n"
+                                    << z_probe("zone_rear", R"(["1 mm", "1 mm", "-4 mm"])");
   const fs::path out = dir / "run";
   ASSERT_EQ(run("run " + (dir / "scene.toml").string() + " --out " + out.string() +
                 " --threads 2 --set output.energy_every=1"),

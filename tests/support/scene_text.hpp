@@ -23,6 +23,12 @@ inline std::string elastic_aluminium(const std::string& name) {
          "\"\ndensity = \"2.7 g/cm^3\"\nyoungs_modulus = \"70 GPa\"\npoisson_ratio = 0.33\n";
 }
 
+// A [[measure]] of kind "displacement" (a probe) at `point`, a TOML array of lengths, along z.
+inline std::string z_probe(const std::string& name, const std::string& point) {
+  return "[[measure]]\nname = \"" + name + "\"\nkind = \"displacement\"\npoint = " + point +
+         "\naxis = \"z\"\n";
+}
+
 // The paper's study alloys under their library names: Al6061 (facesheets, projectile) and
 // Al5052 (core).
 inline std::string study_materials() {
