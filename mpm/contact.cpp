@@ -1,5 +1,7 @@
 #include "mpm/contact.hpp"
 
+#include "mpm/exact_sum.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -128,9 +130,9 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
     }
     block_work_[static_cast<std::size_t>(b)] = work;
   }
-  double total = 0.0;
-  for (const double w : block_work_) total += w;  // in block order: the same for any thread count
-  return total;
+  ExactSum total;  // the same for any thread count and any numbering of the blocks
+  for (const double w : block_work_) total += w;
+  return total.value();
 }
 
 std::size_t BodyContact::bytes() const {

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -127,8 +128,28 @@ void sort_by_owner(ParticleBins& bins, std::uint32_t owners) {
   }
 }
 
+// Each owner block's points by (material, id). A block's patch adds its points in this order, so
+// what the block adds to a node is a function of which points it holds, not of where they stand in
+// the arrays: the same after any reorder or removal, and on whichever process holds the block. The
+// solver keeps its arrays in this order (sort_by_material_and_block), so few blocks need sorting.
+void order_points_by_id(ParticleBins& bins, const Particles& particles, std::uint32_t owners) {
+  const std::int64_t* material = particles.material.data();
+  const std::int64_t* id = particles.id.data();
+  const auto before = [&](std::uint32_t a, std::uint32_t b) {
+    return material[a] != material[b] ? material[a] < material[b] : id[a] < id[b];
+  };
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t b = 0; b < static_cast<std::int64_t>(owners); ++b) {
+    std::uint32_t* first = bins.order.data() + bins.offset[static_cast<std::size_t>(b)];
+    std::uint32_t* last = bins.order.data() + bins.offset[static_cast<std::size_t>(b) + 1];
+    if (!std::is_sorted(first, last, before)) std::sort(first, last, before);
+  }
+}
+
 // Owner blocks by group of 2 x 2 x 2 (halved coordinates), groups numbered in order of their first
-// owner block, owners in order; groups coloured by the parity of their halved coordinates.
+// owner block, a group's owners in order of their keys (so that a node receives a group's patches
+// in an order fixed by the blocks, not by the arrays); groups coloured by the parity of their
+// halved coordinates.
 void group_owner_blocks(ParticleBins& bins, const SparseGrid& grid, std::uint32_t owners) {
   std::unordered_map<std::uint64_t, std::uint32_t> group_of;
   std::vector<std::uint32_t> group(owners), count;
@@ -152,6 +173,10 @@ void group_owner_blocks(ParticleBins& bins, const SparseGrid& grid, std::uint32_
   bins.group_owner.resize(owners);
   std::vector<std::uint32_t> next(bins.group_offset.begin(), bins.group_offset.end() - 1);
   for (std::uint32_t b = 0; b < owners; ++b) bins.group_owner[next[group[b]]++] = b;
+  for (std::size_t g = 0; g < count.size(); ++g)
+    std::sort(bins.group_owner.begin() + bins.group_offset[g],
+              bins.group_owner.begin() + bins.group_offset[g + 1],
+              [&](std::uint32_t a, std::uint32_t b) { return grid.key(a) < grid.key(b); });
 }
 
 }  // namespace
@@ -171,6 +196,7 @@ void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid
   number_owner_blocks(bins.owner, grid, field, which);
   const auto owners = static_cast<std::uint32_t>(grid.block_count());
   sort_by_owner(bins, owners);
+  order_points_by_id(bins, particles, owners);
 
   // Blocks the stencils reach, and groups.
   bins.neighbours.resize(owners);

@@ -5,10 +5,11 @@
 // coordinates halved are the same), whose points reach the 3 x 3 x 3 blocks from the group's
 // first, and groups whose halved coordinates have the same parity on every axis (one of 8
 // "colours") never write to the same node. Scattering colour by colour, groups of one colour in
-// parallel, a group's owner blocks and a block's particles in order, needs no locks or atomics and
-// adds every node's contributions in the same order for any thread count: bitwise-reproducible
-// results. A group's blocks share most of the nodes they reach, which one thread then finds in
-// its cache.
+// parallel, a group's owner blocks by key and a block's particles by (material, id), needs no locks
+// or atomics and adds every node's contributions in an order fixed by the points and the blocks:
+// bitwise-reproducible results for any thread count and any order of the particle arrays (the
+// ground a run over several processes stands on: a process holding a block adds what one would). A
+// group's blocks share most of the nodes they reach, which one thread then finds in its cache.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -23,11 +24,11 @@ struct ParticleBins {
   // Per particle: while binning, the key of its owner block; then the owner block's index, or
   // SparseGrid::none for a particle not binned here.
   std::vector<std::uint64_t> owner;
-  std::vector<std::uint32_t> order;   // particle indices grouped by owner block, stable
+  std::vector<std::uint32_t> order;   // particle indices by owner block, then (material, id)
   std::vector<std::uint32_t> offset;  // owner block b holds order[offset[b], offset[b+1])
   // Owner block b's blocks at b + (dx, dy, dz), dx, dy, dz in {0, 1}, index dx | dy<<1 | dz<<2.
   std::vector<std::array<std::uint32_t, 8>> neighbours;
-  // Group g holds the owner blocks group_owner[group_offset[g], group_offset[g+1]), in order.
+  // Group g holds the owner blocks group_owner[group_offset[g], group_offset[g+1]), by key.
   std::vector<std::uint32_t> group_owner, group_offset;
   std::array<std::vector<std::uint32_t>, 8> colour;  // groups by parity of their halved coordinates
   std::size_t owner_count() const { return neighbours.size(); }

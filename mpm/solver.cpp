@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "mpm/exact_sum.hpp"
 #include "mpm/grid_update.hpp"
 
 namespace hvi::mpm {
@@ -360,14 +361,17 @@ void Solver::remove_escaped_particles() {
     if (!std::isfinite(x[0] + x[1] + x[2])) fail(p, "non-finite position");
   }
   auto& r = state_.removed;
+  const std::size_t first_event = removal_events_.size();
+  // This step's removals summed exactly (the same in any order of the points), then booked.
+  std::array<ExactSum, 6> step;  // mass, kinetic, internal, momentum
   for (const std::uint32_t p : escaped_) {
     const double m = particles_.mass[p];
     const double* v = &particles_.velocity[3 * p];
     r.particles += 1;
-    r.mass += m;
-    r.kinetic += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    r.internal += m * particles_.internal_energy[p];
-    for (int d = 0; d < 3; ++d) r.momentum[d] += m * v[d];
+    step[0] += m;
+    step[1] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    step[2] += m * particles_.internal_energy[p];
+    for (int d = 0; d < 3; ++d) step[3 + d] += m * v[d];
     removal_events_.push_back({particles_.id[p],
                                particles_.body[p],
                                particles_.material[p],
@@ -378,6 +382,14 @@ void Solver::remove_escaped_particles() {
                                state_.time,
                                state_.step});
   }
+  // The step's events by id, as the points' order in the arrays may be any.
+  std::sort(removal_events_.begin() + static_cast<std::ptrdiff_t>(first_event),
+            removal_events_.end(),
+            [](const RemovalEvent& a, const RemovalEvent& b) { return a.id < b.id; });
+  r.mass += step[0].value();
+  r.kinetic += step[1].value();
+  r.internal += step[2].value();
+  for (int d = 0; d < 3; ++d) r.momentum[d] += step[3 + d].value();
   std::vector<std::size_t> sizes;
   for (const auto& range : ranges_) sizes.push_back(range.size());
   particles_.erase(escaped_, sizes);
@@ -438,14 +450,15 @@ void Solver::fail(std::size_t p, const std::string& problem) const {
 // Diagnostics
 
 EnergyReport Solver::energy() const {
-  // Sums over fixed chunks, then over chunks in order: the same result for any thread count.
+  // Exact sums over fixed chunks, merged exactly: the same bits for any thread count and any order
+  // of the points.
   constexpr std::int64_t chunk = 4096;
   const auto n = static_cast<std::int64_t>(particles_.size());
   const std::int64_t chunks = (n + chunk - 1) / chunk;
-  std::vector<std::array<double, 6>> partial(chunks);
+  std::vector<std::array<ExactSum, 6>> partial(static_cast<std::size_t>(chunks));
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < chunks; ++c) {
-    std::array<double, 6> s{};
+    auto& s = partial[static_cast<std::size_t>(c)];
     for (std::int64_t p = c * chunk; p < std::min(n, (c + 1) * chunk); ++p) {
       const double m = particles_.mass[p];
       const double* v = &particles_.velocity[3 * p];
@@ -454,11 +467,12 @@ EnergyReport Solver::energy() const {
       for (int d = 0; d < 3; ++d) s[2 + d] += m * v[d];
       s[5] += m;
     }
-    partial[c] = s;
   }
-  std::array<double, 6> sum{};
+  std::array<ExactSum, 6> total;
   for (const auto& s : partial)
-    for (int k = 0; k < 6; ++k) sum[k] += s[k];
+    for (std::size_t k = 0; k < 6; ++k) total[k] += s[k];
+  std::array<double, 6> sum{};
+  for (std::size_t k = 0; k < 6; ++k) sum[k] = total[k].value();
   EnergyReport e;
   e.kinetic = sum[0];
   for (std::size_t m = 0; m < materials_.size(); ++m)

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "materials/principal_stress.hpp"
+#include "mpm/exact_sum.hpp"
 #include "mpm/phase_timer.hpp"
 #include "mpm/types.hpp"
 
@@ -379,10 +380,10 @@ double HydroMaterial::dissipated_energy(const Particles& P, ParticleRange r) con
   const double* wp = models_.johnson_cook ? P.field(plastic_work).data() : nullptr;
   const double* wq = models_.viscosity ? P.field(viscous_work).data() : nullptr;
   if (!wp && !wq) return 0.0;
-  double sum = 0.0;  // serial: the same sum for any thread count
+  ExactSum sum;  // the same for any thread count and any order of the points
   for (std::size_t p = r.begin; p < r.end; ++p)
     sum += P.mass[p] * ((wp ? wp[p] : 0.0) + (wq ? wq[p] : 0.0));
-  return sum;
+  return sum.value();
 }
 
 }  // namespace hvi::mpm

@@ -17,6 +17,7 @@
 #include "cases/cli/sweep_command.hpp"
 #include "cases/scene/scene.hpp"
 #include "tests/support/run_hvi.hpp"
+#include "tests/support/sanitizers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -137,6 +138,8 @@ TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
 }
 
 TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
+  HVI_SKIP_UNDER_SANITIZERS(
+      "19 s in Release; the sweep runs in Sweep.RunsMadeOneAtATimeShareOneTable");
   const fs::path out = fs::path(testing::TempDir()) / "hvi_sweep";
   fs::remove_all(out);
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep.log";

@@ -3,7 +3,9 @@
 // both shape functions, with the periodic particle reorder and particle removal both happening
 // inside the run (see small_scene in mpm_test_helpers.hpp).
 #include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -19,9 +21,11 @@ struct SceneRun {
   std::vector<RemovalEvent> events;
 };
 
+// With `shuffle`, the particle arrays start in a random order (a fixed seed), as they would on a
+// process that received its points from others.
 SceneRun run_scene(ShapeFunction shape, UpdateScheme scheme, int threads, int reorder_interval,
                    double sphere_speed = 300.0, Dilatation dilatation = Dilatation::particle,
-                   bool contact = false) {
+                   bool contact = false, bool shuffle = false) {
   const Threads scope(threads);
   SolverSettings settings;
   settings.shape = shape;
@@ -31,7 +35,15 @@ SceneRun run_scene(ShapeFunction shape, UpdateScheme scheme, int threads, int re
   // correction runs.
   if (contact) settings.contact = ContactSettings{{0, 1, 0}, 0.2};
   settings.reorder_interval = reorder_interval;
-  SceneRun r{small_scene(settings, sphere_speed), {}};
+  SceneRun r{small_scene_solver(settings), {}};
+  add_small_scene_bodies(*r.solver, sphere_speed);
+  if (shuffle) {
+    std::vector<std::uint32_t> order(r.solver->particles().size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::shuffle(order.begin(), order.end(), std::mt19937(20261205));
+    r.solver->particles().reorder(order);
+  }
+  r.solver->initialise();
   for (int k = 0; k < kSteps; ++k) {
     r.solver->step();
     for (auto& e : r.solver->take_removal_events()) r.events.push_back(e);
@@ -123,33 +135,50 @@ INSTANTIATE_TEST_SUITE_P(
                            300.0, Dilatation::node_average, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
-// The periodic reorder really permutes the arrays (so the tests above exercise it): with
-// reorder_interval 5 the final particle order differs from a run that never reorders, while both
-// keep every material contiguous and every id exactly once; and the physics does not depend on
-// the order beyond round-off (same particles, positions equal to 1e-12 relative to the cell,
-// which is ~10^4 ulp of headroom over the reordered additions' round-off after 50 steps).
-TEST(Determinism, ReorderPermutesAndPreservesParticles) {
-  const SceneRun sorted = run_scene(ShapeFunction::linear, UpdateScheme::musl, 2, 5);
-  const SceneRun unsorted = run_scene(ShapeFunction::linear, UpdateScheme::musl, 2, 0);
-  const Particles &a = sorted.solver->particles(), &b = unsorted.solver->particles();
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_NE(a.id, b.id) << "the reorder did not change the particle order";
-  for (const Particles* P : {&a, &b}) {
-    EXPECT_TRUE(std::is_sorted(P->material.begin(), P->material.end()));
-    std::vector<std::int64_t> ids = P->id;
-    std::sort(ids.begin(), ids.end());
-    EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end());
+// Every field of every point, point by point (matched by id), bitwise.
+::testing::AssertionResult identical_by_id(const Particles& a, const Particles& b) {
+  if (a.size() != b.size())
+    return ::testing::AssertionFailure() << "counts differ: " << a.size() << " vs " << b.size();
+  std::vector<std::size_t> ia(a.size()), ib(b.size());
+  std::iota(ia.begin(), ia.end(), 0);
+  std::iota(ib.begin(), ib.end(), 0);
+  std::sort(ia.begin(), ia.end(), [&](auto x, auto y) { return a.id[x] < a.id[y]; });
+  std::sort(ib.begin(), ib.end(), [&](auto x, auto y) { return b.id[x] < b.id[y]; });
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a.id[ia[k]] != b.id[ib[k]]) return ::testing::AssertionFailure() << "ids differ";
+  for (const auto& f : a.real_fields()) {
+    const auto& x = *f.data;
+    const auto& y = b.field(f.name);
+    const std::size_t nc = x.size() / a.size();
+    for (std::size_t k = 0; k < a.size(); ++k)
+      for (std::size_t c = 0; c < nc; ++c)
+        if (std::memcmp(&x[ia[k] * nc + c], &y[ib[k] * nc + c], sizeof(double)) != 0)
+          return ::testing::AssertionFailure()
+                 << "field " << f.name << " of point " << a.id[ia[k]]
+                 << " differs: " << x[ia[k] * nc + c] << " vs " << y[ib[k] * nc + c];
   }
-  std::vector<std::size_t> by_id_a(a.size()), by_id_b(b.size());
-  std::iota(by_id_a.begin(), by_id_a.end(), 0);
-  std::iota(by_id_b.begin(), by_id_b.end(), 0);
-  std::sort(by_id_a.begin(), by_id_a.end(), [&](auto x, auto y) { return a.id[x] < a.id[y]; });
-  std::sort(by_id_b.begin(), by_id_b.end(), [&](auto x, auto y) { return b.id[x] < b.id[y]; });
-  const double h = sorted.solver->grid().geometry().cell_size;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    ASSERT_EQ(a.id[by_id_a[k]], b.id[by_id_b[k]]);
-    for (int d = 0; d < 3; ++d)
-      ASSERT_NEAR(a.position[3 * by_id_a[k] + d], b.position[3 * by_id_b[k] + d], 1e-12 * h);
+  return ::testing::AssertionSuccess();
+}
+
+// The order of the particle arrays does not change a bit of any point: a block adds its points by
+// (material, id) and a group its blocks by key, whatever the arrays' order; the energies and the
+// removed points' ledger are exact sums (exact_sum.hpp) and the removal events are listed by id.
+// Compared, for every case above, with the run whose arrays start shuffled and with one that
+// shuffles them and never reorders them.
+TEST_P(Determinism, ArrayOrderDoesNotChangeBits) {
+  const Case c = GetParam();
+  const SceneRun one = run_scene(c.shape, c.scheme, 2, 5, c.sphere_speed, c.dilatation, c.contact);
+  const SceneRun shuffled =
+      run_scene(c.shape, c.scheme, 2, 5, c.sphere_speed, c.dilatation, c.contact, true);
+  const SceneRun unsorted =
+      run_scene(c.shape, c.scheme, 2, 0, c.sphere_speed, c.dilatation, c.contact, true);
+  EXPECT_NE(one.solver->particles().id, shuffled.solver->particles().id);
+  EXPECT_NE(one.solver->particles().id, unsorted.solver->particles().id);
+  for (const SceneRun* other : {&shuffled, &unsorted}) {
+    EXPECT_TRUE(identical_by_id(one.solver->particles(), other->solver->particles()));
+    EXPECT_TRUE(identical_state(*one.solver, *other->solver));
+    EXPECT_TRUE(same_events(one.events, other->events));
+    EXPECT_TRUE(same_energy(one.solver->energy(), other->solver->energy()));
   }
 }
 

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "tests/support/sanitizers.hpp"
 #include "tests/verification/scene_run.hpp"
 
 namespace hvi {
@@ -56,6 +57,8 @@ TaylorResult run_taylor_bar(const std::vector<std::string>& overrides) {
 }
 
 TEST(TaylorBar, FinalLengthAndFootDiameterWithin2PercentOfBenchmark) {
+  HVI_SKIP_UNDER_SANITIZERS(
+      "40 s in Release; the Taylor bar's materials run in tests/mpm/materials");
   const TaylorResult r = run_taylor_bar({});
   EXPECT_LE(std::fabs(range_error(r.length * 1e3, 26.52, 26.55)), 0.02);
   EXPECT_LE(std::fabs(range_error(r.foot * 1e3, 11.18, 11.22)), 0.02);
@@ -72,6 +75,7 @@ TEST(TaylorBar, FinalLengthAndFootDiameterWithin2PercentOfBenchmark) {
 // averaged volume response is softer and the foot spreads wider (measured 11.62 mm, 3.6% above
 // the benchmark, so 5% is allowed there, while the length stays within 2%).
 TEST(TaylorBar, NodeAveragedDilatationConservesEnergy) {
+  HVI_SKIP_UNDER_SANITIZERS("48 s in Release; the node average runs in Stability.*");
   const TaylorResult r = run_taylor_bar({"grid.dilatation=node-average"});
   EXPECT_NEAR(r.energy_error, 0.0, 1e-3);
   EXPECT_LE(std::fabs(range_error(r.length * 1e3, 26.52, 26.55)), 0.02);
