@@ -5,11 +5,12 @@
 // coordinates halved are the same), whose points reach the 3 x 3 x 3 blocks from the group's
 // first, and groups whose halved coordinates have the same parity on every axis (one of 8
 // "colours") never write to the same node. Scattering colour by colour, groups of one colour in
-// parallel, a group's owner blocks by key and a block's particles by (material, id), needs no locks
-// or atomics and adds every node's contributions in an order fixed by the points and the blocks:
-// bitwise-reproducible results for any thread count and any order of the particle arrays (the
-// ground a run over several processes stands on: a process holding a block adds what one would). A
-// group's blocks share most of the nodes they reach, which one thread then finds in its cache.
+// parallel, each group summing its owner blocks by key and a block's particles by (material, id)
+// from zero before its sums go to the nodes (group_sums.hpp), needs no locks or atomics and adds
+// every node's contributions in an order fixed by the points and the blocks: bitwise-reproducible
+// results for any thread count and any order of the particle arrays, and the same bits when a
+// node's groups are scattered by different processes (a run over several ranks). A group's blocks
+// share most of the nodes they reach, which one thread then finds in its cache.
 #include <array>
 #include <cstdint>
 #include <vector>

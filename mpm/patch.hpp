@@ -59,11 +59,12 @@ struct PatchRegion {
 };
 
 // f(block, local index of the row's first node, patch index of its first node) for every row of 4
-// nodes of `region` (finished), block by block; `blocks` are the owner block's eight neighbours
-// (ParticleBins::neighbours).
-template <class F>
+// nodes of `region` (finished), block by block, after on_block(o, block) for each block it
+// reaches; `blocks` are the owner block's eight neighbours (ParticleBins::neighbours), block o at
+// the owner's coordinates + (o & 1, (o >> 1) & 1, o >> 2).
+template <class F, class G>
 void for_each_patch_row(const std::array<std::uint32_t, 8>& blocks, const PatchRegion& region,
-                        F&& f) {
+                        F&& f, G&& on_block) {
   constexpr int E = SparseGrid::block_edge;
   for (int oz = 0; oz < 2; ++oz) {
     const int z0 = std::max(region.lo[2], E * oz), z1 = std::min(region.hi[2], E * oz + E);
@@ -71,13 +72,21 @@ void for_each_patch_row(const std::array<std::uint32_t, 8>& blocks, const PatchR
       const int y0 = std::max(region.lo[1], E * oy), y1 = std::min(region.hi[1], E * oy + E);
       for (int ox = 0; ox < 2 && y0 < y1; ++ox) {
         if (region.lo[0] > E * ox || region.hi[0] < E * ox + E) continue;
-        const std::uint32_t b = blocks[ox | oy << 1 | oz << 2];
+        const int o = ox | oy << 1 | oz << 2;
+        const std::uint32_t b = blocks[o];
+        on_block(o, b);
         for (int z = z0; z < z1; ++z)
           for (int y = y0; y < y1; ++y)
             f(b, local_node(0, y - E * oy, z - E * oz), patch::index(E * ox, y, z));
       }
     }
   }
+}
+
+template <class F>
+void for_each_patch_row(const std::array<std::uint32_t, 8>& blocks, const PatchRegion& region,
+                        F&& f) {
+  for_each_patch_row(blocks, region, f, [](int, std::uint32_t) {});
 }
 
 // Zeroes components [0, count) of a patch over a region (finished: x in rows of 4).

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "mpm/group_sums.hpp"
 #include "mpm/patch.hpp"
 #include "mpm/transfer_kernels.hpp"
 #include "mpm/types.hpp"
@@ -11,8 +12,9 @@
 // Each pass runs owner block by owner block (particle_bins.hpp): it evaluates the stencils of the
 // block's points (or reads them from a StencilCache), copies the nodal values it reads into the
 // block's patch (patch.hpp), runs the per-point kernels (transfer_kernels.hpp) and adds what they
-// scattered to the nodes. A pass that scatters runs colour by colour, blocks of one colour in
-// parallel, so each node receives its blocks' patches in the same order for any thread count.
+// scattered to its group's sums, which go to the nodes once the group's blocks are done
+// (group_sums.hpp). A pass that scatters runs colour by colour, groups of one colour in parallel,
+// so each node receives its groups' sums in the same order for any thread count.
 
 namespace hvi::mpm {
 namespace {
@@ -129,6 +131,7 @@ struct Scratch {
   std::vector<PatchStencil<3>> gimp;
   std::vector<double> values;
   std::vector<double*> pointers;
+  GroupSums sums;  // of the group in hand, in a pass that adds
   template <int W>
   std::vector<PatchStencil<W>>& stencils() {
     if constexpr (W == 2)
@@ -182,6 +185,8 @@ class BlockPass {
         scratch_(scratch),
         grid_(*a.grid),
         inv_h_(a.s.inv_h) {
+    const auto c = SparseGrid::block_coords(a.grid->key(b));
+    reach_ = (c[0] & 1) + 3 * (c[1] & 1) + 9 * (c[2] & 1);  // the owner's place in its group
     const auto origin = a.grid->block_origin(b);
     st_.resize(count_);
     for (std::uint32_t k = 0; k < count_; ++k) {
@@ -229,6 +234,26 @@ class BlockPass {
     for_each_patch_row(nb_, region_, f);
   }
 
+  // f(r, local index, patch index) for each row of four nodes of the region, in a pass that adds:
+  // r is the row's block among the group's reach blocks, whose sums (acc(r, c)) run_pass adds to
+  // the nodes once the group is done.
+  template <class F>
+  void each_added_row(F&& f) const {
+    GroupSums& sums = scratch_.sums;
+    int r = 0;
+    for_each_patch_row(
+        nb_, region_,
+        [&](std::uint32_t, int l, int i) {
+          sums.open_row(r, l);
+          f(r, l, i);
+        },
+        [&](int o, std::uint32_t b) {
+          r = reach_ + (o & 1) + 3 * ((o >> 1) & 1) + 9 * (o >> 2);
+          sums.touch(r, b);
+        });
+  }
+  double* acc(int r, int c) const { return scratch_.sums.at(r, c); }
+
   // The node average's values abar_I of every group into components c[0 .. groups).
   void load_averages(double* const* c) const {
     const NodeAverageSums& na = *a_.average;
@@ -238,15 +263,12 @@ class BlockPass {
       for (int g = 0; g < groups; ++g) set_row(c[g] + i, row(sums + sums_at(b, groups, g, 0) + l));
     });
   }
-  // Adds the (value, weight) pairs of every group in c[0 .. 2 groups) to the node average's sums.
+  // Adds the (value, weight) pairs of every group in c[0 .. 2 groups) to the node average's sums
+  // (component 2 g + k, added_target).
   void add_sums(double* const* c) const {
-    const NodeAverageSums& na = *a_.average;
-    double* sums = na.sums->data();
-    const int groups = na.average.groups;
-    each_row([&](std::uint32_t b, int l, int i) {
-      for (int g = 0; g < groups; ++g)
-        for (int k = 0; k < 2; ++k)
-          add_row(sums + sums_at(b, groups, g, k) + l, row(c[2 * g + k] + i));
+    const int components = 2 * a_.average->average.groups;
+    each_added_row([&](int r, int l, int i) {
+      for (int k = 0; k < components; ++k) add_row(acc(r, k) + l, row(c[k] + i));
     });
   }
 
@@ -277,13 +299,13 @@ class BlockPass {
       kernels::scatter_point<W, Mass, Momentum, Force>(st_[k], inv_h_, P_.mass[p],
                                                        &P_.velocity[3 * p], vs, c);
     }
-    each_row([&](std::uint32_t b, int l, int i) {
-      if constexpr (Mass) add_row(grid_.values(b, node_value::mass) + l, row(c[sp::mass] + i));
+    // Components as added_target numbers them: m, p, f, leaving out those not scattered.
+    constexpr int momentum = Mass ? 1 : 0, force = momentum + (Momentum ? 3 : 0);
+    each_added_row([&](int r, int l, int i) {
+      if constexpr (Mass) add_row(acc(r, 0) + l, row(c[sp::mass] + i));
       for (int d = 0; d < 3; ++d) {
-        if constexpr (Momentum)
-          add_row(grid_.values(b, node_value::p + d) + l, row(c[sp::momentum + d] + i));
-        if constexpr (Force)
-          add_row(grid_.values(b, node_value::f + d) + l, row(c[sp::force + d] + i));
+        if constexpr (Momentum) add_row(acc(r, momentum + d) + l, row(c[sp::momentum + d] + i));
+        if constexpr (Force) add_row(acc(r, force + d) + l, row(c[sp::force + d] + i));
       }
     });
   }
@@ -318,9 +340,8 @@ class BlockPass {
       }
     }
     if constexpr (Remap)
-      each_row([&](std::uint32_t b, int l, int i) {
-        for (int d = 0; d < 3; ++d)
-          add_row(grid_.values(b, node_value::q + d) + l, row(c[vp::count + d] + i));
+      each_added_row([&](int r, int l, int i) {
+        for (int d = 0; d < 3; ++d) add_row(acc(r, d) + l, row(c[vp::count + d] + i));
       });
   }
 
@@ -388,10 +409,8 @@ class BlockPass {
     zero_patch(c, 3, region_);
     for (std::uint32_t k = 0; k < count_; ++k)
       kernels::scatter_mass_gradient(st_[k], inv_h_, P_.mass[order_[k]], c);
-    each_row([&](std::uint32_t b, int l, int i) {
-      for (int d = 0; d < 3; ++d)
-        add_row(a_.out + (3 * static_cast<std::size_t>(b) + d) * SparseGrid::block_size + l,
-                row(c[d] + i));
+    each_added_row([&](int r, int l, int i) {
+      for (int d = 0; d < 3; ++d) add_row(acc(r, d) + l, row(c[d] + i));
     });
   }
 
@@ -405,6 +424,7 @@ class BlockPass {
   SparseGrid& grid_;
   double inv_h_;
   PatchRegion region_;
+  int reach_ = 0;
 };
 
 // One owner block of a pass, built for the processor at hand (simd.hpp).
@@ -415,18 +435,56 @@ HVI_SIMD_KERNEL void run_block_gimp(const PassArgs& a, std::uint32_t b, Scratch&
   BlockPass<GimpShape>(a, b, scratch).run();
 }
 
+// The arrays of 64 nodes per block a pass that adds adds to, and where component c of block b
+// goes: the grid's values (m, p, f as scattered; q), the node average's (value, weight) of each
+// group, the outward normals.
+int added_components(const PassArgs& a) {
+  switch (a.pass) {
+    case Pass::scatter:
+      return a.what == Scatter::mass_momentum ? 4 : a.what == Scatter::force ? 3 : 7;
+    case Pass::velocity:
+    case Pass::normals:
+      return 3;
+    case Pass::gradient:
+    case Pass::average_scatter:
+      return 2 * a.average->average.groups;
+    case Pass::average_gather:
+      return 0;
+  }
+  return 0;
+}
+double* added_target(const PassArgs& a, std::uint32_t b, int c) {
+  switch (a.pass) {
+    case Pass::scatter:
+      return a.grid->values(b, (a.what == Scatter::force ? node_value::f : node_value::mass) + c);
+    case Pass::velocity:
+      return a.grid->values(b, node_value::q + c);
+    case Pass::gradient:
+    case Pass::average_scatter:
+      return a.average->sums->data() + sums_at(b, a.average->average.groups, c / 2, c % 2);
+    case Pass::normals:
+      return a.out + (3 * static_cast<std::size_t>(b) + static_cast<std::size_t>(c)) *
+                         SparseGrid::block_size;
+    case Pass::average_gather:
+      break;
+  }
+  return nullptr;
+}
+
 // Every owner block (with `owners`, those marked), group by group in parallel, a group's blocks
-// in order; `coloured`: colour by colour, so that blocks may add to their nodes (see
-// particle_bins.hpp).
+// in order; `coloured` (a pass that adds): colour by colour, each group's sums added to the nodes
+// once its blocks are done (group_sums.hpp, particle_bins.hpp).
 void run_pass(const PassArgs& a, ShapeFunction shape, bool coloured) {
   const auto block = shape == ShapeFunction::linear ? run_block_linear : run_block_gimp;
   const ParticleBins& bins = *a.bins;
   const auto* owners = a.owners;
   const auto group = [&](std::uint32_t g, Scratch& scratch) {
+    if (coloured) scratch.sums.begin(added_components(a));
     for (std::uint32_t k = bins.group_offset[g]; k < bins.group_offset[g + 1]; ++k) {
       const std::uint32_t b = bins.group_owner[k];
       if (!owners || (*owners)[b]) block(a, b, scratch);
     }
+    if (coloured) scratch.sums.flush([&](std::uint32_t b, int c) { return added_target(a, b, c); });
   };
 #pragma omp parallel
   {

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/run_hvi.hpp"
+#include "tests/support/sanitizers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -62,6 +63,8 @@ TEST(Cli, HybridBalancesMomentumAndEnergyAndWritesItsFarField) {
 }
 
 TEST(Cli, HybridOutputIsBitwiseIdenticalForOneAndTwoThreadsAndOnResume) {
+  HVI_SKIP_UNDER_SANITIZERS(
+      "72 s there; a hybrid runs in Cli.HybridBalancesMomentumAndEnergyAndWritesItsFarField");
   const fs::path two = scratch("hybrid2"), one = scratch("hybrid1"),
                  parts = scratch("hybrid_parts");
   ASSERT_EQ(run("run " + hybrid + " --out " + two.string() + " --threads 2"), 0);
@@ -118,6 +121,7 @@ fs::path expect_hybrid_balances_and_repeats_bitwise(const std::string& sets,
 // its plastic state the checkpoints, so a resumed run and a one-thread run repeat the two-thread
 // run byte for byte.
 TEST(Cli, HybridWithPlasticFacesheetsBalancesEnergyAndResumesBitwise) {
+  HVI_SKIP_UNDER_SANITIZERS("72 s there; the J2 facesheets run in tests/fem");
   const fs::path two = expect_hybrid_balances_and_repeats_bitwise(j2, "hybrid_j2");
   const auto rows = csv_rows(two / "energy.csv");
   ASSERT_FALSE(rows.empty());
@@ -137,6 +141,7 @@ TEST(Cli, HybridWithPlasticFacesheetsBalancesEnergyAndResumesBitwise) {
 // for byte; the balance holds to the same 0.5%; and the far field, its yield raised by the rate
 // factor (1.07-1.14 at 1e2-1e4 /s), yields less than at the reference rate.
 TEST(Cli, HybridWithRateDependentFacesheetsBalancesEnergyAndResumesBitwise) {
+  HVI_SKIP_UNDER_SANITIZERS("101 s there; the rate term runs in tests/fem");
   const fs::path rate = expect_hybrid_balances_and_repeats_bitwise(
       j2 + " --set far_field.strain_rate=johnson-cook", "hybrid_j2_rate");
   const fs::path reference = scratch("hybrid_j2_reference");
@@ -155,6 +160,7 @@ TEST(Cli, HybridWithRateDependentFacesheetsBalancesEnergyAndResumesBitwise) {
 // resumed run repeat two threads byte for byte (the far field's step follows the stretch of the
 // last force evaluation; the next step is chosen before a checkpoint is written and kept in it).
 TEST(Cli, HybridWithFiniteStrainBalancesEnergyAndResumesBitwise) {
+  HVI_SKIP_UNDER_SANITIZERS("128 s there; finite strain runs in tests/fem");
   // safety 0.3: the far field's step, which follows its stretch, sets the pace at every step.
   const std::string finite = " --set far_field.kinematics=finite --set far_field.safety=0.3" + j2;
   const fs::path two = expect_hybrid_balances_and_repeats_bitwise(finite, "hybrid_finite");
@@ -173,6 +179,7 @@ TEST(Cli, HybridWithFiniteStrainBalancesEnergyAndResumesBitwise) {
 // failing core's own share is checked against the yielding core's: within 0.1% (measured 0.01%;
 // booking a torn point's elastic predictor each step, a force it never exerts, added 0.5%).
 TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
+  HVI_SKIP_UNDER_SANITIZERS("104 s there; the failing core runs in tests/fem");
   const std::string al5052 =
       " --set far_field.plasticity=failing --set material.aluminium.library=Al5052"
       " --set material.aluminium.strength=johnson-cook --set material.aluminium.damage=johnson-cook"
@@ -211,6 +218,7 @@ TEST(Cli, HybridWithFailingCoreBalancesEnergyAndResumesBitwise) {
 // took the points' own mean displacement it jumped by a third of its reading, 2.8 of 8.5 um).
 // hvi measure reads the points born after t = 0.
 TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
+  HVI_SKIP_UNDER_SANITIZERS("370 s there; the take-over runs in ZoneGrowth.*");
   const std::string growing =
       " --set far_field.plasticity=failing --set far_field.core=failing --set "
       "material.aluminium.library=Al5052"
@@ -263,6 +271,7 @@ TEST(Cli, HybridWithAGrowingZoneRepeatsBitwiseAndItsProbeGoesOn) {
 // lines (13 of the 134, from 3.66 us to the end). A run stopped at step 118 and resumed reports the
 // same: the record is in the checkpoint.
 TEST(Cli, AGrowingZoneHeldAtItsLimitByTheDamageSaysSo) {
+  HVI_SKIP_UNDER_SANITIZERS("172 s there; the take-over runs in ZoneGrowth.*");
   const std::string growing =
       " --set far_field.plasticity=failing --set far_field.core=failing --set "
       "material.aluminium.library=Al5052"

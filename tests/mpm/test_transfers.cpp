@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <utility>
 
@@ -68,24 +69,35 @@ Sums nodal_sums(const SparseGrid& grid) {
   return s;
 }
 
-void check_conservation(ShapeFunction shape) {
-  const double h = 1e-3;
+// 40 x 40 x 40 cells of h from (-20, -20, -20) mm.
+GridGeometry cube_grid(double h) {
   GridGeometry g;
   g.origin = {-0.02, -0.02, -0.02};
   g.cell_size = h;
   g.cells = {40, 40, 40};
-  Cloud c;
-  // 4000 particles in the inner 30 x 30 x 30 cells: ~0.15 per cell, so most blocks hold a few and
-  // the colour scatter crosses many block boundaries.
-  fill_cloud(c, 4000, -0.015, 0.015, h, shape == ShapeFunction::linear ? 1 : 2);
-  SparseGrid grid(g);
-  ParticleBins bins;
+  return g;
+}
+
+// Bins the cloud and scatters its mass, momentum and force.
+void scatter_cloud(Cloud& c, ShapeFunction shape, SparseGrid& grid, ParticleBins& bins) {
   const std::vector<double>* hw = shape == ShapeFunction::gimp ? &c.half_width : nullptr;
   bin_particles(c.P, {shape, hw}, grid, bins, {});
   TransferContext ctx;
   ctx.shape = shape;
   ctx.half_width = hw;
   particles_to_grid(Scatter::mass_momentum_force, c.P, bins, grid, ctx);
+}
+
+void check_conservation(ShapeFunction shape) {
+  const double h = 1e-3;
+  const GridGeometry g = cube_grid(h);
+  Cloud c;
+  // 4000 particles in the inner 30 x 30 x 30 cells: ~0.15 per cell, so most blocks hold a few and
+  // the colour scatter crosses many block boundaries.
+  fill_cloud(c, 4000, -0.015, 0.015, h, shape == ShapeFunction::linear ? 1 : 2);
+  SparseGrid grid(g);
+  ParticleBins bins;
+  scatter_cloud(c, shape, grid, bins);
 
   double mass = 0, momentum[3] = {0, 0, 0}, abs_momentum[3] = {0, 0, 0};
   for (std::size_t p = 0; p < c.P.size(); ++p) {
@@ -261,6 +273,81 @@ TEST(Transfers, StencilCacheGivesTheSameBits) {
   cache.invalidate();
   expect_same_bits(moved, run_passes(cached, g, &cache, failed));
   EXPECT_FALSE(same_bits(moved.nodes, run_passes(stale, g, &stale_cache, failed).nodes));
+}
+
+// What a run over several ranks rests on (group_sums.hpp): a node's scattered mass, momentum and
+// force are, to the bit, its groups' sums added colour by colour from zero, each colour's sums
+// being what that colour's points alone scatter. So a rank holding some of a node's groups can
+// send the others its sums per colour. 20,000 points at ~5 a cell, so that groups hold several
+// blocks and nodes receive several colours.
+void check_colour_by_colour(ShapeFunction shape) {
+  const double h = 1e-3;
+  const GridGeometry g = cube_grid(h);
+  Cloud all;
+  fill_cloud(all, 20000, -0.008, 0.008, h, 41);
+  SparseGrid whole(g);
+  ParticleBins bins;
+  scatter_cloud(all, shape, whole, bins);
+  // Each colour's points on their own grid.
+  std::vector<std::unique_ptr<SparseGrid>> colour_grid;
+  int colours_met = 0;
+  for (int colour = 0; colour < 8; ++colour) {
+    Cloud part;
+    std::vector<std::size_t> mine;
+    for (std::size_t p = 0; p < all.P.size(); ++p) {
+      const auto c = SparseGrid::block_coords(whole.key(static_cast<std::uint32_t>(bins.owner[p])));
+      if ((((c[0] >> 1) & 1) | (((c[1] >> 1) & 1) << 1) | (((c[2] >> 1) & 1) << 2)) == colour)
+        mine.push_back(p);
+    }
+    part.P.resize(mine.size());
+    part.half_width.resize(3 * mine.size());
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      const std::size_t p = mine[k];
+      for (int d = 0; d < 3; ++d) {
+        part.P.position[3 * k + d] = all.P.position[3 * p + d];
+        part.P.velocity[3 * k + d] = all.P.velocity[3 * p + d];
+        part.half_width[3 * k + d] = all.half_width[3 * p + d];
+      }
+      for (int i = 0; i < 6; ++i) part.P.stress[6 * k + i] = all.P.stress[6 * p + i];
+      part.P.mass[k] = all.P.mass[p];
+      part.P.volume0[k] = all.P.volume0[p];
+      part.P.volume[k] = all.P.volume[p];
+      part.P.id[k] = all.P.id[p];
+    }
+    colour_grid.push_back(std::make_unique<SparseGrid>(g));
+    ParticleBins part_bins;
+    scatter_cloud(part, shape, *colour_grid.back(), part_bins);
+    colours_met += mine.empty() ? 0 : 1;
+  }
+  EXPECT_EQ(colours_met, 8);
+  std::size_t nodes_of_several_colours = 0;
+  for (std::uint32_t b = 0; b < whole.block_count(); ++b)
+    for (int l = 0; l < SparseGrid::block_size; ++l) {
+      int received = 0;
+      for (int v = 0; v < node_value::q; ++v) {  // m, p, f
+        double sum = 0.0;
+        for (const auto& cg : colour_grid) {
+          const std::uint32_t at = cg->find(whole.key(b));
+          if (at == SparseGrid::none) continue;
+          const double x = cg->values(at, v)[l];
+          sum += x;
+          if (v == node_value::mass && x > 0.0) ++received;
+        }
+        const double expected = whole.values(b, v)[l];
+        ASSERT_EQ(std::memcmp(&sum, &expected, sizeof sum), 0)
+            << "block " << b << " node " << l << " value " << v << ": " << expected << " vs "
+            << sum;
+      }
+      if (received > 1) ++nodes_of_several_colours;
+    }
+  EXPECT_GT(nodes_of_several_colours, 500u);
+}
+
+TEST(Transfers, ANodeAddsItsGroupsSumsColourByColourLinear) {
+  check_colour_by_colour(ShapeFunction::linear);
+}
+TEST(Transfers, ANodeAddsItsGroupsSumsColourByColourGimp) {
+  check_colour_by_colour(ShapeFunction::gimp);
 }
 
 // Particles grown in bulk (a hybrid's zone taking over far-field cells, Particles::resize) hold
