@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "mpm/exact_sum.hpp"
 #include "mpm/particles.hpp"
 
 namespace hvi::mpm {
@@ -61,11 +62,11 @@ class Material {
   // timing table shows exactly the models a scene names.
   virtual StressUpdate update_stress(Particles& particles, ParticleRange range,
                                      const StressContext& context) const = 0;
-  // Energy dissipated so far in the group (plastic work, viscous heating), J. Part of the internal
+  // Adds the energy dissipated so far in the group (plastic work, viscous heating, J) to `sum`,
+  // term by term, so that the total over materials and ranks is exact. Part of the internal
   // energy: the recoverable (strain) part is internal - dissipated.
-  virtual double dissipated_energy(const Particles& /*particles*/, ParticleRange /*range*/) const {
-    return 0.0;
-  }
+  virtual void add_dissipated_energy(const Particles& /*particles*/, ParticleRange /*range*/,
+                                     ExactSum& /*sum*/) const {}
   // Reference density, kg/m^3 (to give sampled points their mass).
   virtual double reference_density() const = 0;
 

@@ -9,6 +9,7 @@
 
 #include "mpm/exact_sum.hpp"
 #include "mpm/grid_update.hpp"
+#include "mpm/point_exchange.hpp"
 
 namespace hvi::mpm {
 
@@ -44,6 +45,7 @@ TransferContext Solver::transfer_context() const {
 // Set-up
 
 void Solver::initialise() {
+  announce(Command::initialise);
   for (const auto& m : materials_) m->declare_fields(particles_);
   if (is_gimp(settings_.shape)) {
     // A particle's domain: the half-widths its creator gave (the sampling spacing / 2 per axis),
@@ -77,11 +79,12 @@ void Solver::initialise() {
   double signal = 0.0;
   for (std::size_t m = 0; m < materials_.size(); ++m)
     signal = std::max(signal, materials_[m]->max_signal_speed(particles_, ranges_[m]));
-  max_signal_speed_ = signal;
+  max_signal_speed_ = max_over_ranks(signal);
   choose_time_step();
 }
 
 void Solver::adopt_particles(std::size_t first) {
+  if (distributed()) throw SolverError("points cannot be adopted by a run spread over ranks yet");
   const std::size_t n = particles_.size();
   for (std::size_t p = first; p < n; ++p)
     if (!geometry_.contains(&particles_.position[3 * p]))
@@ -108,6 +111,7 @@ void Solver::adopt_particles(std::size_t first) {
 }
 
 void Solver::restore(const SolverState& state) {
+  announce(Command::restore);
   for (const auto& m : materials_) m->declare_fields(particles_);
   if (is_gimp(settings_.shape)) half_width_ = &particles_.field(half_width_field);
   compute_material_ranges();
@@ -154,13 +158,20 @@ void Solver::sort_by_material_and_block() {
 // The step
 
 void Solver::step(double max_dt) {
+  announce(Command::step, max_dt);
   dt_ = std::min(state_.next_dt, max_dt);
+  if (distributed()) {
+    if (!couplings_.empty())
+      throw SolverError("a run spread over ranks cannot take coupled models (a far field) yet");
+    share_points();
+  }
   bin_particles();
   if (settings_.reorder_interval > 0 && state_.step % settings_.reorder_interval == 0 &&
       state_.step > 0) {
     auto t = timer_.scope("sort particles");
     sort_by_material_and_block();
   }
+  if (distributed()) add_ghosts();
   switch (settings_.scheme) {
     case UpdateScheme::musl:
       particles_to_grid(Scatter::mass_momentum_force);
@@ -171,6 +182,7 @@ void Solver::step(double max_dt) {
       couple(GridStage::remapped);
       update_remapped_grid();
       compute_velocity_gradient(NodalVelocity::remapped);
+      drop_ghosts();  // the last transfer is done: from here on, this rank's own points only
       update_stress();
       break;
     case UpdateScheme::usl:
@@ -180,6 +192,7 @@ void Solver::step(double max_dt) {
       update_grid(true, true);
       grid_to_particles(false);
       compute_velocity_gradient(NodalVelocity::end);
+      drop_ghosts();
       update_stress();
       break;
     case UpdateScheme::usf:
@@ -308,7 +321,7 @@ void Solver::update_stress() {
     if (r.bad_particle >= 0) fail(static_cast<std::size_t>(r.bad_particle), r.problem);
     signal = std::max(signal, r.max_signal_speed);
   }
-  max_signal_speed_ = signal;
+  max_signal_speed_ = max_over_ranks(signal);
 }
 
 // cpGIMP: the axis-aligned domain follows the stretch along each axis, a_d <- a_d (1 + dt L_dd),
@@ -354,7 +367,7 @@ void Solver::move_particles() {
 // The points that left the grid, booked as removed, then taken out: the last points of each
 // material move into the gaps (Particles::erase).
 void Solver::remove_escaped_particles() {
-  if (escaped_.empty()) return;
+  if (escaped_.empty() && !distributed()) return;
   auto t = timer_.scope("remove escaped");
   for (const std::uint32_t p : escaped_) {
     const double* x = &particles_.position[3 * p];
@@ -363,11 +376,11 @@ void Solver::remove_escaped_particles() {
   auto& r = state_.removed;
   const std::size_t first_event = removal_events_.size();
   // This step's removals summed exactly (the same in any order of the points), then booked.
-  std::array<ExactSum, 6> step;  // mass, kinetic, internal, momentum
+  std::array<ExactSum, 7> step;  // mass, kinetic, internal, momentum, count
   for (const std::uint32_t p : escaped_) {
     const double m = particles_.mass[p];
     const double* v = &particles_.velocity[3 * p];
-    r.particles += 1;
+    step[6] += 1.0;
     step[0] += m;
     step[1] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     step[2] += m * particles_.internal_energy[p];
@@ -386,6 +399,9 @@ void Solver::remove_escaped_particles() {
   std::sort(removal_events_.begin() + static_cast<std::ptrdiff_t>(first_event),
             removal_events_.end(),
             [](const RemovalEvent& a, const RemovalEvent& b) { return a.id < b.id; });
+  if (distributed()) add_over_ranks(*comm_, step);  // every rank books every rank's removals
+  r.particles += static_cast<std::int64_t>(step[6].value());
+  global_points_ -= static_cast<std::size_t>(step[6].value());
   r.mass += step[0].value();
   r.kinetic += step[1].value();
   r.internal += step[2].value();
@@ -432,8 +448,10 @@ std::size_t Solver::fastest_particle() const {
 }
 
 std::vector<RemovalEvent> Solver::take_removal_events() {
+  announce(Command::removal_events);
   std::vector<RemovalEvent> events;
   events.swap(removal_events_);
+  if (distributed()) gather_removal_events(events);
   return events;
 }
 
@@ -450,12 +468,13 @@ void Solver::fail(std::size_t p, const std::string& problem) const {
 // Diagnostics
 
 EnergyReport Solver::energy() const {
+  announce(Command::energy);
   // Exact sums over fixed chunks, merged exactly: the same bits for any thread count and any order
   // of the points.
   constexpr std::int64_t chunk = 4096;
   const auto n = static_cast<std::int64_t>(particles_.size());
   const std::int64_t chunks = (n + chunk - 1) / chunk;
-  std::vector<std::array<ExactSum, 6>> partial(static_cast<std::size_t>(chunks));
+  std::vector<std::array<ExactSum, 7>> partial(static_cast<std::size_t>(chunks));
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < chunks; ++c) {
     auto& s = partial[static_cast<std::size_t>(c)];
@@ -468,15 +487,17 @@ EnergyReport Solver::energy() const {
       s[5] += m;
     }
   }
-  std::array<ExactSum, 6> total;
+  std::array<ExactSum, 7> total;  // the six above and the dissipated energy
   for (const auto& s : partial)
     for (std::size_t k = 0; k < 6; ++k) total[k] += s[k];
-  std::array<double, 6> sum{};
-  for (std::size_t k = 0; k < 6; ++k) sum[k] = total[k].value();
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    materials_[m]->add_dissipated_energy(particles_, ranges_[m], total[6]);
+  if (distributed()) add_over_ranks(*comm_, total);
+  std::array<double, 7> sum{};
+  for (std::size_t k = 0; k < 7; ++k) sum[k] = total[k].value();
   EnergyReport e;
   e.kinetic = sum[0];
-  for (std::size_t m = 0; m < materials_.size(); ++m)
-    e.dissipated += materials_[m]->dissipated_energy(particles_, ranges_[m]);
+  e.dissipated = sum[6];
   e.internal = sum[1] - e.dissipated;
   e.momentum = {sum[2], sum[3], sum[4]};
   e.mass = sum[5];

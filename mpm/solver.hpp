@@ -3,6 +3,7 @@
 // paper's Sec. 2.3 flowchart) as a short list of named phases. Particles, grid, materials and
 // boundary conditions are owned here; coupled models enter through GridCoupling hooks.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -11,12 +12,14 @@
 #include <vector>
 
 #include "mpm/boundary.hpp"
+#include "mpm/communicator.hpp"
 #include "mpm/contact.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_coupling.hpp"
 #include "mpm/material.hpp"
 #include "mpm/particle_bins.hpp"
 #include "mpm/particles.hpp"
+#include "mpm/partition.hpp"
 #include "mpm/phase_timer.hpp"
 #include "mpm/shape_functions.hpp"
 #include "mpm/transfers.hpp"
@@ -122,6 +125,35 @@ class Solver {
   void add_coupling(GridCoupling* coupling) { couplings_.push_back(coupling); }
   const std::vector<GridCoupling*>& couplings() const { return couplings_; }
 
+  // Spreads the run over the ranks of `comm` (solver_ranks.cpp), before initialise() or restore().
+  // From then on initialise, restore, step, energy, take_removal_events and gather_to_root are
+  // collective: every rank calls them alike. The points may start on any ranks (each once); the
+  // first step sends each to the rank owning its group. Refuses what a spread run cannot do yet
+  // (USF, contact, the node-averaged dilatation; coupled models are refused by step()).
+  void distribute(Communicator* comm);
+  bool distributed() const { return comm_ != nullptr && comm_->size() > 1; }
+  int rank() const { return comm_ ? comm_->rank() : 0; }
+  // Collective: moves every point to rank 0, for output written there; the next step spreads
+  // them again.
+  void gather_to_root();
+  // A driver that runs on rank 0 only: there, lead() makes each collective call tell the other
+  // ranks, which wait in follow(), to make it too; `restore_points` is what a follower does when
+  // rank 0 restores a checkpoint (read it, declaring the same fields, and drop_points()).
+  // stop_followers() (on rank 0, once its driver is done) ends their follow().
+  void lead() { leading_ = true; }
+  void follow(const std::function<void()>& restore_points);
+  static void stop_followers(Communicator& comm);
+  // Forgets every point (a follower that read a checkpoint rank 0 holds the points of).
+  void drop_points();
+  // The points of the run on every rank (after a step, or when all are on one rank).
+  std::size_t point_count() const { return distributed() ? global_points_ : particles_.size(); }
+  // How often the partition was cut anew (the first cut included), and the points that changed
+  // rank.
+  struct Sharing {
+    std::int64_t cuts = 0, migrated = 0, ghosts = 0;  // ghosts: copies received, summed over steps
+  };
+  const Sharing& sharing() const { return sharing_; }
+
   // Before the first step: groups particles by material, declares and initialises material state,
   // and chooses the first time step. With `restored`, the particles and state come from a
   // checkpoint and are taken as they are (same order, same next time step).
@@ -171,6 +203,16 @@ class Solver {
   void move_particles();
   void remove_escaped_particles();
   void choose_time_step();
+  // A run spread over ranks (solver_ranks.cpp).
+  void share_points();
+  void migrate(const std::vector<int>& destination);
+  void group_by_material();
+  void add_ghosts();
+  void drop_ghosts();
+  void gather_removal_events(std::vector<RemovalEvent>& events) const;
+  double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
+  enum class Command { stop, initialise, restore, step, energy, removal_events, gather };
+  void announce(Command command, double argument = 0.0) const;
 
   // f(bins, grid, node average or nullptr) for each velocity field: the solver's, then contact's.
   template <class F>
@@ -209,6 +251,16 @@ class Solver {
   std::vector<std::uint32_t> escaped_;  // points move_particles() found outside the grid, ascending
   std::vector<MirrorPlane> mirrors_;    // the symmetry planes points are reflected at
   PhaseTimer timer_;
+  // A run spread over ranks: the ranks, the partition of the groups among them, and the ghost
+  // points (copies of other ranks' points near this rank's, after the first owned_ points, during
+  // the transfers of a step; ghost_depth_ blocks deep, see solver_ranks.cpp).
+  Communicator* comm_ = nullptr;
+  Partition partition_;
+  std::size_t owned_ = 0;
+  int ghost_depth_ = 0;
+  Sharing sharing_;
+  bool leading_ = false;
+  std::size_t global_points_ = 0;
 };
 
 }  // namespace hvi::mpm

@@ -16,6 +16,7 @@
 //   hvi compare RUN_A RUN_B                        two runs' measures and costs side by side
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
 //                                                  a grid of runs, resumable; DIR/sweep.csv
+//   mpirun -np N hvi run SCENE --out DIR           one run spread over N ranks
 //   mpirun -np N hvi sweep ...                     the runs handed out among N ranks
 #include <omp.h>
 #include <sys/wait.h>
@@ -36,6 +37,7 @@
 #include "cases/cli/geometry_command.hpp"
 #include "cases/cli/probe_command.hpp"
 #include "cases/cli/sweep_command.hpp"
+#include "cases/parallel/mpi_communicator.hpp"
 #include "cases/parallel/ranks.hpp"
 #include "cases/run/build_solver.hpp"
 #include "cases/run/hybrid.hpp"
@@ -275,9 +277,12 @@ void add_analysis_commands(CLI::App& app, Commands& c) {
   c.units = hvi::driver::add_units_command(app);
 }
 
-// hvi run: a scene, or the run in --resume DIR with its resolved scene.
-int run(Commands& c, const std::string& command_line) {
+// hvi run: a scene, or the run in --resume DIR with its resolved scene; under an MPI launcher,
+// spread over its ranks.
+int run(Commands& c, const std::string& command_line, const hvi::parallel::Ranks& ranks) {
+  const auto communicator = hvi::parallel::make_communicator(ranks);
   hvi::driver::RunOptions options;
+  options.ranks = communicator.get();
   options.threads = c.threads;
   options.overwrite = c.overwrite;
   options.max_memory = memory_bytes(c.max_memory);
@@ -297,14 +302,15 @@ int run(Commands& c, const std::string& command_line) {
   return hvi::driver::run_scene(scene, options);
 }
 
-// Under an MPI launcher, the commands but hvi sweep run on one rank: say so before doing anything.
+// Under an MPI launcher, the commands but hvi run and hvi sweep run on one rank: say so before
+// doing anything.
 bool refuse_ranks(const Commands& c, const hvi::parallel::Ranks& ranks) {
-  if (ranks.size() == 1 || *c.sweep_cmd) return false;
+  if (ranks.size() == 1 || *c.sweep_cmd || *c.run) return false;
   if (ranks.root())
     fmt::print(stderr,
-               "hvi: started as {} ranks of an MPI job; only `hvi sweep` shares its work among "
-               "ranks (one run per rank at a time). Start this command without mpirun, or with "
-               "-np 1\n",
+               "hvi: started as {} ranks of an MPI job; only `hvi run` (one run spread over the "
+               "ranks) and `hvi sweep` (one run per rank at a time) share their work among ranks. "
+               "Start this command without mpirun, or with -np 1\n",
                ranks.size());
   return true;
 }
@@ -335,7 +341,7 @@ int dispatch(Commands& c, const std::string& command_line, const hvi::parallel::
     return hvi::driver::geometry_command(hvi::scene::load_scene(c.scene_path, c.overrides),
                                          c.out_dir);
   }
-  if (*c.run) return run(c, command_line);
+  if (*c.run) return run(c, command_line, ranks);
   return ExitCode::success;
 }
 

@@ -158,6 +158,13 @@ int SceneRun::build() {
   threads_ = omp_get_max_threads();
   solver_ = make_solver(scene_);
   try {
+    if (options_.ranks) {
+      if (scene_.far_field)
+        throw std::invalid_argument(
+            "a far field ([far_field]) cannot be spread over ranks yet: run this scene on one");
+      solver_->distribute(options_.ranks);
+      solver_->lead();
+    }
     hybrid_ = make_hybrid(scene_, *solver_);
     if (options_.resume) {
       extras_ = mpm::io::read_checkpoint(dir_ / "checkpoint.h5", *solver_);
@@ -262,9 +269,11 @@ int SceneRun::start_at_zero() {
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
     fmt::print("  body '{}': {} particles, material '{}'\n", scene_.bodies[b].name, counts_[b],
                scene_.materials[scene_.bodies[b].material].name);
-  fmt::print("  grid {} x {} x {} cells of {:.4g} m; {} threads; first dt {:.4g} s\n",
+  fmt::print("  grid {} x {} x {} cells of {:.4g} m; {} threads{}; first dt {:.4g} s\n",
              scene_.grid.cells[0], scene_.grid.cells[1], scene_.grid.cells[2],
-             scene_.grid.cell_size, threads_, s.next_time_step());
+             scene_.grid.cell_size, threads_,
+             options_.ranks ? fmt::format(" on each of {} ranks", options_.ranks->size()) : "",
+             s.next_time_step());
   if (hybrid_) fmt::print("  {}\n", hybrid_->describe());
   const mpm::EnergyReport e0 = s.energy();
   initial_energy_ = e0.total();
@@ -306,6 +315,12 @@ int SceneRun::time_loop() {
   } catch (const mpm::SolverError& e) {
     progress_->finish();
     fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
+    if (options_.ranks) {  // the other ranks wait inside the step: the job ends here
+      fmt::print(stderr, "hvi: checkpoint.h5 (step {}) holds the last state before it\n",
+                 last_checkpoint_step_);
+      std::fflush(nullptr);
+      options_.ranks->abort(run_failed);
+    }
     // The state at the failure, for a look in ParaView or h5py (not a restart point).
     mpm::io::write_snapshot_file(dir_ / "failure.h5", s);
     fmt::print(stderr,
@@ -325,7 +340,7 @@ int SceneRun::time_loop() {
 void SceneRun::step() {
   mpm::Solver& s = *solver_;
   s.step(end_ - s.time());
-  particle_steps_ += static_cast<double>(s.particles().size());
+  particle_steps_ += static_cast<double>(s.point_count());
   report_removals(s, s.take_removal_events(), reported_removals_);
   if (hybrid_ && hybrid_->growing()) grow_zone();
   const bool last = at_end();
@@ -371,6 +386,7 @@ void SceneRun::grow_zone() {
 void SceneRun::log_energy() {
   mpm::Solver& s = *solver_;
   auto t = s.timer().scope("energy");
+  s.gather_to_root();  // the probes and the measures' records read every point
   const mpm::EnergyReport e = s.energy();
   energy_log_->write(s, e);
   probes_->record(s);
@@ -388,6 +404,7 @@ void SceneRun::log_energy() {
 void SceneRun::write_output() {
   mpm::Solver& s = *solver_;
   auto t = s.timer().scope("write snapshots");
+  s.gather_to_root();
   write_snapshots();
   output_.advance(s.time());
   progress_->snapshot_written(s);
@@ -436,6 +453,7 @@ void SceneRun::check_same_state() const {
 // wall: this invocation's time-loop seconds up to the state written.
 void SceneRun::checkpoint(double wall) {
   auto t = solver_->timer().scope("write checkpoint");
+  solver_->gather_to_root();
   last_checkpoint_step_ = solver_->step_count();
   mpm::io::CheckpointExtras extras{{"next_output_time", output_.next},
                                    {"next_checkpoint_time", checkpoints_.next},
@@ -453,6 +471,7 @@ void SceneRun::checkpoint(double wall) {
 // per phase on the console; timing.csv, the holes of the final snapshot and summary.json/.toml.
 int SceneRun::finish(int code) {
   mpm::Solver& s = *solver_;
+  s.gather_to_root();
   const mpm::EnergyReport e = s.energy();
   const double balance =
       initial_energy_ != 0.0 ? (e.total() - initial_energy_) / initial_energy_ : 0.0;
@@ -518,6 +537,14 @@ void SceneRun::print_result(int code, double rate, std::size_t peak_memory,
   if (s.removed().particles > 0)
     fmt::print("  left the grid: {} particles, {:.6g} kg, {:.6g} J\n", s.removed().particles,
                s.removed().mass, e.removed);
+  if (options_.ranks) {
+    const auto& r = s.sharing();
+    fmt::print(
+        "  ranks: {}; the partition cut {} times; rank 0 sent or received {} migrating points "
+        "and took {:.0f} ghost points a step\n",
+        options_.ranks->size(), r.cuts, r.migrated,
+        static_cast<double>(r.ghosts) / std::max<std::int64_t>(1, s.step_count() - first_step_));
+  }
 }
 
 // The far field's plastic strain and the zone a growing one reached.
@@ -571,6 +598,7 @@ toml::table SceneRun::summary(const char* status, double rate, std::size_t peak_
                       {"wall_seconds", wall_},
                       {"particle_steps_per_second", rate},
                       {"threads", threads_},
+                      {"ranks", options_.ranks ? options_.ranks->size() : 1},
                       {"peak_memory_bytes", static_cast<std::int64_t>(peak_memory)},
                       {"initial_energy", initial_energy_},
                       {"energy_balance", balance},
@@ -660,8 +688,60 @@ void SceneRun::measure_final_holes(toml::table& summary, std::map<std::string, d
 
 }  // namespace
 
+namespace {
+
+// A rank but the first of a run spread over ranks: builds the same solver, without points, and
+// steps with rank 0 until it says stop. Signals are rank 0's to act on (it checkpoints and stops
+// the others); a solver error here ends the job.
+int follow_scene(const scene::Scene& scene, const RunOptions& options) {
+  std::signal(SIGINT, SIG_IGN);
+  std::signal(SIGTERM, SIG_IGN);
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  std::unique_ptr<mpm::Solver> solver;
+  try {
+    solver = make_solver(scene);
+    solver->distribute(options.ranks);
+  } catch (const std::exception&) {  // rank 0 refuses the same scene and says why
+    solver.reset();
+  }
+  if (!solver) {
+    std::vector<double> message;
+    do options.ranks->broadcast(message);  // until rank 0 says stop
+    while (message.at(0) != 0.0);
+    return input_error;
+  }
+  try {
+    solver->follow([&] {
+      mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver);
+      solver->drop_points();  // rank 0 holds them until the first step spreads them
+    });
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "hvi: rank {}: the run failed: {}\n", options.ranks->rank(), e.what());
+    std::fflush(nullptr);
+    options.ranks->abort(run_failed);
+  }
+  return success;
+}
+
+// Ends the other ranks' follow_scene() when rank 0's driver returns, however it returns.
+class FollowersStop {
+ public:
+  explicit FollowersStop(mpm::Communicator& ranks) : ranks_(ranks) {}
+  ~FollowersStop() { mpm::Solver::stop_followers(ranks_); }
+  FollowersStop(const FollowersStop&) = delete;
+  FollowersStop& operator=(const FollowersStop&) = delete;
+
+ private:
+  mpm::Communicator& ranks_;
+};
+
+}  // namespace
+
 // The phases of a run, in order; each returns at the first error with its exit code.
 int run_scene(const scene::Scene& scene, const RunOptions& options) {
+  if (options.ranks && options.ranks->rank() != 0) return follow_scene(scene, options);
+  std::optional<FollowersStop> stop;
+  if (options.ranks) stop.emplace(*options.ranks);
   SceneRun run(scene, options);
   if (const int code = run.check_directory(); code != success) return code;
   if (const int code = run.build(); code != success) return code;  // nothing written yet

@@ -18,6 +18,9 @@ struct RunOptions {
   bool resume = false;       // continue the run in `out` from its checkpoint
   std::string command_line;  // recorded in run.json
   double max_memory = 0;     // bytes the bodies' points may take; 0: what the machine has free
+  // The ranks of an MPI job the run is spread over (mpm/solver_ranks.cpp), or nullptr: one rank.
+  // Rank 0 runs the driver and writes everything; the others step with it.
+  mpm::Communicator* ranks = nullptr;
 };
 
 // Exit codes of `hvi run`: 128 + the signal for a run stopped by SIGINT (Ctrl-C) or SIGTERM (what a

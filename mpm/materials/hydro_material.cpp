@@ -376,14 +376,13 @@ void HydroMaterial::erode_crushed(Particles& P, std::int64_t p, const State& st,
   if (st.eps_rate) st.eps_rate[p] = 0.0;
 }
 
-double HydroMaterial::dissipated_energy(const Particles& P, ParticleRange r) const {
+void HydroMaterial::add_dissipated_energy(const Particles& P, ParticleRange r,
+                                          ExactSum& sum) const {
   const double* wp = models_.johnson_cook ? P.field(plastic_work).data() : nullptr;
   const double* wq = models_.viscosity ? P.field(viscous_work).data() : nullptr;
-  if (!wp && !wq) return 0.0;
-  ExactSum sum;  // the same for any thread count and any order of the points
+  if (!wp && !wq) return;
   for (std::size_t p = r.begin; p < r.end; ++p)
     sum += P.mass[p] * ((wp ? wp[p] : 0.0) + (wq ? wq[p] : 0.0));
-  return sum.value();
 }
 
 }  // namespace hvi::mpm

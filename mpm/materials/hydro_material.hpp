@@ -91,7 +91,8 @@ class HydroMaterial : public Material {
   double max_signal_speed(const Particles& particles, ParticleRange range) const override;
   StressUpdate update_stress(Particles& particles, ParticleRange range,
                              const StressContext& context) const override;
-  double dissipated_energy(const Particles& particles, ParticleRange range) const override;
+  void add_dissipated_energy(const Particles& particles, ParticleRange range,
+                             ExactSum& sum) const override;
   double reference_density() const override { return models_.density; }
 
   const HydroModels& models() const { return models_; }

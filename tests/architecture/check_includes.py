@@ -15,7 +15,7 @@ LIBRARIES = ("materials", "geometry", "mpm", "fem", "coupling", "analysis", "cas
 # Folder -> what its files may include besides their own folder: folders, or a folder's subfolder.
 RULES = {
     "materials": (),  # hvi_materials: the laws on doubles, nothing of hvi
-    "cases/parallel": (),  # hvi_parallel: the ranks of an MPI job and the tasks handed out among them
+    "cases/parallel": ("mpm",),  # hvi_parallel: the ranks of an MPI job, the solver's communicator over them, the tasks handed out among them
     "geometry": (),  # hvi_geometry: solids and point sets, nothing of hvi
     "mpm": ("materials",),  # hvi_mpm
     "fem": ("materials",),  # hvi_fem: the laws, never through mpm/

@@ -1,11 +1,13 @@
 #pragma once
 // Shared set-up for the MPM core tests: a solver built by hand from lattice-sampled solids (the
 // way a scene does it), per-run diagnostics, and bitwise comparison of particle arrays.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -127,6 +129,46 @@ inline ::testing::AssertionResult identical_particles(const Particles& a, const 
 }
 
 // Exact equality of the restartable state.
+// Every field of every point that outlives a step, point by point (matched by id), bitwise. The
+// scratch fields (the velocity gradient, the grid velocity) hold the step's intermediate values,
+// which a point that changed rank after its last step does not carry.
+inline ::testing::AssertionResult identical_by_id(const Particles& a, const Particles& b) {
+  if (a.size() != b.size())
+    return ::testing::AssertionFailure() << "counts differ: " << a.size() << " vs " << b.size();
+  std::vector<std::size_t> ia(a.size()), ib(b.size());
+  std::iota(ia.begin(), ia.end(), 0);
+  std::iota(ib.begin(), ib.end(), 0);
+  std::sort(ia.begin(), ia.end(), [&](auto x, auto y) { return a.id[x] < a.id[y]; });
+  std::sort(ib.begin(), ib.end(), [&](auto x, auto y) { return b.id[x] < b.id[y]; });
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a.id[ia[k]] != b.id[ib[k]]) return ::testing::AssertionFailure() << "ids differ";
+  for (const auto& f : a.real_fields()) {
+    if (f.scratch) continue;
+    const auto& x = *f.data;
+    const auto& y = b.field(f.name);
+    const std::size_t nc = x.size() / a.size();
+    for (std::size_t k = 0; k < a.size(); ++k)
+      for (std::size_t c = 0; c < nc; ++c)
+        if (std::memcmp(&x[ia[k] * nc + c], &y[ib[k] * nc + c], sizeof(double)) != 0)
+          return ::testing::AssertionFailure()
+                 << "field " << f.name << " of point " << a.id[ia[k]]
+                 << " differs: " << x[ia[k] * nc + c] << " vs " << y[ib[k] * nc + c];
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The same removal events, in the same order, bitwise.
+inline bool same_events(const std::vector<RemovalEvent>& a, const std::vector<RemovalEvent>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const auto &x = a[k], &y = b[k];
+    if (x.id != y.id || x.body != y.body || x.material != y.material || x.position != y.position ||
+        x.velocity != y.velocity || x.mass != y.mass || x.time != y.time || x.step != y.step)
+      return false;
+  }
+  return true;
+}
+
 inline ::testing::AssertionResult identical_state(const Solver& a, const Solver& b) {
   const SolverState &x = a.state(), &y = b.state();
   if (x.time != y.time || x.step != y.step || x.next_dt != y.next_dt)

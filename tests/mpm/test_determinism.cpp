@@ -51,17 +51,6 @@ SceneRun run_scene(ShapeFunction shape, UpdateScheme scheme, int threads, int re
   return r;
 }
 
-bool same_events(const std::vector<RemovalEvent>& a, const std::vector<RemovalEvent>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    const auto &x = a[k], &y = b[k];
-    if (x.id != y.id || x.body != y.body || x.material != y.material || x.position != y.position ||
-        x.velocity != y.velocity || x.mass != y.mass || x.time != y.time || x.step != y.step)
-      return false;
-  }
-  return true;
-}
-
 bool same_energy(const EnergyReport& a, const EnergyReport& b) {
   return a.kinetic == b.kinetic && a.internal == b.internal && a.dissipated == b.dissipated &&
          a.removed == b.removed && a.momentum == b.momentum &&
@@ -134,31 +123,6 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf_contact_node_average",
                            300.0, Dilatation::node_average, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
-
-// Every field of every point, point by point (matched by id), bitwise.
-::testing::AssertionResult identical_by_id(const Particles& a, const Particles& b) {
-  if (a.size() != b.size())
-    return ::testing::AssertionFailure() << "counts differ: " << a.size() << " vs " << b.size();
-  std::vector<std::size_t> ia(a.size()), ib(b.size());
-  std::iota(ia.begin(), ia.end(), 0);
-  std::iota(ib.begin(), ib.end(), 0);
-  std::sort(ia.begin(), ia.end(), [&](auto x, auto y) { return a.id[x] < a.id[y]; });
-  std::sort(ib.begin(), ib.end(), [&](auto x, auto y) { return b.id[x] < b.id[y]; });
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (a.id[ia[k]] != b.id[ib[k]]) return ::testing::AssertionFailure() << "ids differ";
-  for (const auto& f : a.real_fields()) {
-    const auto& x = *f.data;
-    const auto& y = b.field(f.name);
-    const std::size_t nc = x.size() / a.size();
-    for (std::size_t k = 0; k < a.size(); ++k)
-      for (std::size_t c = 0; c < nc; ++c)
-        if (std::memcmp(&x[ia[k] * nc + c], &y[ib[k] * nc + c], sizeof(double)) != 0)
-          return ::testing::AssertionFailure()
-                 << "field " << f.name << " of point " << a.id[ia[k]]
-                 << " differs: " << x[ia[k] * nc + c] << " vs " << y[ib[k] * nc + c];
-  }
-  return ::testing::AssertionSuccess();
-}
 
 // The order of the particle arrays does not change a bit of any point: a block adds its points by
 // (material, id) and a group its blocks by key, whatever the arrays' order; the energies and the

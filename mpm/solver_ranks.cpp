@@ -1,0 +1,232 @@
+// A run spread over ranks. Each rank owns the points of the 2 x 2 x 2 block groups the partition
+// gives it (partition.hpp). At the start of a step, points that crossed into another rank's group
+// migrate there; then every rank receives copies ("ghosts") of the other ranks' points in the
+// owner blocks within ghost_depth_ blocks of its own, and runs the step's transfers over its
+// points and the ghosts together. A node's value is the colour-ordered sum of its groups' sums,
+// each summed over its blocks by key and its points by (material, id) (particle_bins.hpp), so
+// every node this rank's points read, having all its contributing blocks here, gets exactly the
+// bits a run on one rank gives it. After the last transfer the ghosts are dropped; the stress
+// update, motion and removal run on a rank's own points; the maxima and the exact sums are taken
+// over ranks. The results are bitwise those of one rank, for any rank count.
+//
+// How deep the ghosts must be. A point in owner block b reads and writes nodes of the blocks b to
+// b + 1 on each axis, so the nodes a block's points read receive from owner blocks b - 1 to
+// b + 1: one layer of ghost blocks makes every node this rank's points read complete (USL).
+// MUSL's remap scatters each point's updated velocity, which the point gathered: for the nodes
+// this rank reads to be right, the first ghost layer's gathers must be, which needs a second.
+#include <algorithm>
+#include <bit>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "mpm/point_exchange.hpp"
+#include "mpm/solver.hpp"
+
+namespace hvi::mpm {
+
+void Solver::distribute(Communicator* comm) {
+  comm_ = comm;
+  if (!distributed()) return;
+  if (settings_.scheme == UpdateScheme::usf)
+    throw SolverError("a run spread over ranks supports the MUSL and USL schemes, not USF, yet");
+  if (contact_) throw SolverError("a run spread over ranks cannot use contact between bodies yet");
+  if (settings_.dilatation == Dilatation::node_average)
+    throw SolverError("a run spread over ranks cannot use the node-averaged dilatation yet");
+  ghost_depth_ = settings_.scheme == UpdateScheme::musl ? 2 : 1;
+  partition_ = Partition();
+}
+
+// Each point to the rank owning its group. The partition is cut on the first step, and anew when
+// the points per rank drift past 10% over the mean and a new cut would hold fewer on the fullest
+// rank (a cut is only as even as its largest group allows).
+void Solver::share_points() {
+  auto t = timer_.scope("ranks: migrate points");
+  bin_particles();
+  const std::size_t n = particles_.size();
+  std::vector<std::uint64_t> group(n);
+  for (std::size_t p = 0; p < n; ++p) group[p] = group_of_block(grid_.key(bins_.owner[p]));
+  std::vector<std::uint64_t> keys = group;
+  std::sort(keys.begin(), keys.end());
+  std::vector<GroupLoad> mine;
+  for (const auto k : keys)
+    if (!mine.empty() && mine.back().key == k)
+      ++mine.back().points;
+    else
+      mine.push_back({k, 1});
+  const std::vector<GroupLoad> loads = global_loads(*comm_, mine);
+  if (partition_.ranks() != comm_->size()) {
+    partition_ = Partition(loads, comm_->size());
+    ++sharing_.cuts;
+  } else if (const auto now = points_per_rank(partition_, loads); needs_rebalance(now)) {
+    Partition cut(loads, comm_->size());
+    if (imbalance(points_per_rank(cut, loads)) < imbalance(now)) {
+      partition_ = std::move(cut);
+      ++sharing_.cuts;
+    }
+  }
+  global_points_ = 0;
+  for (const auto& g : loads) global_points_ += g.points;
+  std::vector<int> destination(n);
+  for (std::size_t p = 0; p < n; ++p) destination[p] = partition_.rank_of(group[p]);
+  migrate(destination);
+}
+
+void Solver::gather_to_root() {
+  if (!distributed()) return;
+  announce(Command::gather);
+  auto t = timer_.scope("ranks: gather for output");
+  migrate(std::vector<int>(particles_.size(), 0));
+}
+
+// Sends each point to its destination rank (its own stays), and regroups the arrays by material.
+void Solver::migrate(const std::vector<int>& destination) {
+  const int me = comm_->rank();
+  std::vector<std::vector<std::uint32_t>> leaving(static_cast<std::size_t>(comm_->size()));
+  std::vector<std::uint32_t> gone;  // ascending
+  for (std::size_t p = 0; p < destination.size(); ++p)
+    if (destination[p] != me) {
+      leaving[static_cast<std::size_t>(destination[p])].push_back(static_cast<std::uint32_t>(p));
+      gone.push_back(static_cast<std::uint32_t>(p));
+    }
+  std::vector<std::vector<double>> out(leaving.size());
+  for (std::size_t r = 0; r < leaving.size(); ++r) out[r] = pack_points(particles_, leaving[r]);
+  const auto in = comm_->exchange(std::move(out));
+  std::vector<std::size_t> sizes;
+  for (const auto& range : ranges_) sizes.push_back(range.size());
+  particles_.erase(gone, sizes);
+  for (std::size_t r = 0; r < in.size(); ++r)
+    if (static_cast<int>(r) != me) append_points(particles_, in[r]);
+  sharing_.migrated += static_cast<std::int64_t>(gone.size());
+  group_by_material();
+}
+
+// A stable counting sort by material (the order inside a material does not change any sum).
+void Solver::group_by_material() {
+  std::vector<std::uint32_t> order(particles_.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return particles_.material[a] < particles_.material[b];
+  });
+  particles_.reorder(order);
+  compute_material_ranges();
+}
+
+// Copies of the points of other ranks' owner blocks within ghost_depth_ blocks of this rank's,
+// appended after its own points; the bins then hold both.
+void Solver::add_ghosts() {
+  auto t = timer_.scope("ranks: ghost points");
+  owned_ = particles_.size();
+  const int me = comm_->rank(), depth = ghost_depth_;
+  std::vector<std::vector<std::uint32_t>> copies(static_cast<std::size_t>(comm_->size()));
+  std::vector<int> ranks;
+  for (std::uint32_t b = 0; b < bins_.owner_count(); ++b) {
+    const auto c = SparseGrid::block_coords(grid_.key(b));
+    ranks.clear();
+    for (int dz = -depth; dz <= depth; ++dz)
+      for (int dy = -depth; dy <= depth; ++dy)
+        for (int dx = -depth; dx <= depth; ++dx) {
+          const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
+          if (x < 0 || y < 0 || z < 0) continue;
+          const int r = partition_.rank_of(group_of_block(SparseGrid::block_key(x, y, z)));
+          if (r != me && std::find(ranks.begin(), ranks.end(), r) == ranks.end())
+            ranks.push_back(r);
+        }
+    for (const int r : ranks) {
+      auto& list = copies[static_cast<std::size_t>(r)];
+      list.insert(list.end(), bins_.order.begin() + bins_.offset[b],
+                  bins_.order.begin() + bins_.offset[b + 1]);
+    }
+  }
+  std::vector<std::vector<double>> out(copies.size());
+  for (std::size_t r = 0; r < copies.size(); ++r) out[r] = pack_points(particles_, copies[r]);
+  const auto in = comm_->exchange(std::move(out));
+  for (std::size_t r = 0; r < in.size(); ++r)
+    if (static_cast<int>(r) != me) append_points(particles_, in[r]);
+  sharing_.ghosts += static_cast<std::int64_t>(particles_.size() - owned_);
+  bin_particles();
+}
+
+void Solver::drop_ghosts() {
+  if (!distributed() || particles_.size() == owned_) return;
+  particles_.resize(owned_);
+}
+
+void Solver::announce(Command command, double argument) const {
+  if (!leading_ || !distributed()) return;
+  std::vector<double> message{static_cast<double>(command), argument};
+  comm_->broadcast(message);
+}
+
+void Solver::stop_followers(Communicator& comm) {
+  std::vector<double> message{static_cast<double>(Command::stop), 0.0};
+  comm.broadcast(message);
+}
+
+void Solver::follow(const std::function<void()>& restore_points) {
+  for (;;) {
+    std::vector<double> message;
+    comm_->broadcast(message);
+    switch (static_cast<Command>(static_cast<int>(message.at(0)))) {
+      case Command::stop:
+        return;
+      case Command::initialise:
+        initialise();
+        break;
+      case Command::restore:
+        restore_points();
+        break;
+      case Command::step:
+        step(message.at(1));
+        break;
+      case Command::energy:
+        (void)energy();
+        break;
+      case Command::removal_events:
+        (void)take_removal_events();
+        break;
+      case Command::gather:
+        gather_to_root();
+        break;
+    }
+  }
+}
+
+void Solver::drop_points() {
+  particles_.resize(0);
+  compute_material_ranges();
+}
+
+// Every rank's removal events on every rank, listed by step, then id, as one rank lists them.
+void Solver::gather_removal_events(std::vector<RemovalEvent>& events) const {
+  constexpr std::size_t per = 12;
+  std::vector<double> mine;
+  mine.reserve(per * events.size());
+  for (const auto& e : events) {
+    for (const std::int64_t i : {e.id, e.body, e.material, e.step})
+      mine.push_back(std::bit_cast<double>(i));
+    mine.insert(mine.end(), e.position.begin(), e.position.end());
+    mine.insert(mine.end(), e.velocity.begin(), e.velocity.end());
+    mine.push_back(e.mass);
+    mine.push_back(e.time);
+  }
+  events.clear();
+  for (const auto& from : comm_->all_gather(mine))
+    for (std::size_t k = 0; k + per <= from.size(); k += per) {
+      const double* f = &from[k];
+      RemovalEvent e{};
+      e.id = std::bit_cast<std::int64_t>(f[0]);
+      e.body = std::bit_cast<std::int64_t>(f[1]);
+      e.material = std::bit_cast<std::int64_t>(f[2]);
+      e.step = std::bit_cast<std::int64_t>(f[3]);
+      for (int d = 0; d < 3; ++d) e.position[d] = f[4 + d], e.velocity[d] = f[7 + d];
+      e.mass = f[10];
+      e.time = f[11];
+      events.push_back(e);
+    }
+  std::sort(events.begin(), events.end(), [](const RemovalEvent& a, const RemovalEvent& b) {
+    return a.step != b.step ? a.step < b.step : a.id < b.id;
+  });
+}
+
+}  // namespace hvi::mpm

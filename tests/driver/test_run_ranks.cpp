@@ -1,0 +1,66 @@
+// `mpirun -np N hvi run`: one run spread over the ranks of an MPI job (mpm/solver_ranks.cpp) writes
+// the bytes a run on one rank writes: every snapshot file, particles.xmf and energy.csv, also when
+// it is stopped on 3 ranks and resumed on 2. What a spread run cannot do yet is refused before
+// anything runs. Under mpirun, oversubscribed (this machine has 2 cores).
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/support/run_hvi.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace hvi::test;
+
+const std::string demo = std::string(HVI_SOURCE_DIR) + "/cases/demo.toml";
+// The demo's first 0.6 us (about 55 steps: the sphere enters the front sheet), a snapshot every
+// 0.2 us.
+const std::string shortened = " --set 'run.end_time=0.6 us' --set 'output.interval=0.2 us'";
+
+int on_ranks(int ranks, const std::string& args, const fs::path& log) {
+  const std::string command =
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive " +
+      std::string(HVI_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
+      HVI_BINARY + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(RunOnRanks, WritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
+  if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const fs::path one = scratch("ranks_one"), spread = scratch("ranks_spread");
+  const fs::path log = scratch("ranks_log.txt");
+  ASSERT_EQ(run("run " + demo + " --out " + one.string() + " --threads 1" + shortened), 0);
+  // Stopped on 3 ranks between snapshots and between energy rows, resumed on 2.
+  ASSERT_EQ(on_ranks(3,
+                     "run " + demo + " --out " + spread.string() + " --threads 1" + shortened +
+                         " --set run.max_steps=25",
+                     log),
+            0)
+      << read(log);
+  EXPECT_NE(read(log).find("1 threads on each of 3 ranks"), std::string::npos) << read(log);
+  EXPECT_NE(read(log).find("ranks: 3; the partition cut"), std::string::npos) << read(log);
+  ASSERT_EQ(
+      on_ranks(2, "run --resume " + spread.string() + " --threads 1 --set run.max_steps=0", log), 0)
+      << read(log);
+  EXPECT_NE(read(log).find("ranks: 2;"), std::string::npos) << read(log);
+  expect_same_output(one, spread, 4);
+  EXPECT_EQ(summary_number(spread, "ranks"), 2.0);
+}
+
+TEST(RunOnRanks, RefusesWhatASpreadRunCannotDoYet) {
+  if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const fs::path out = scratch("ranks_refused"), log = scratch("ranks_refused_log.txt");
+  EXPECT_EQ(on_ranks(2, "run " + demo + " --out " + out.string() + " --set grid.scheme=usf", log),
+            2);
+  EXPECT_NE(read(log).find("supports the MUSL and USL schemes, not USF"), std::string::npos)
+      << read(log);
+  EXPECT_FALSE(fs::exists(out / "snapshots"));
+}
+
+}  // namespace
