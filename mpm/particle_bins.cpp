@@ -181,16 +181,19 @@ void group_owner_blocks(ParticleBins& bins, const SparseGrid& grid, std::uint32_
 
 }  // namespace
 
+void owner_block_keys(const Particles& particles, StencilSource stencil,
+                      const GridGeometry& geometry, std::vector<std::uint64_t>& keys) {
+  keys.resize(particles.size());
+  if (stencil.shape == ShapeFunction::linear)
+    owner_keys<LinearShape>(particles, geometry, nullptr, keys);
+  else
+    owner_keys<GimpShape>(particles, geometry, stencil.half_width, keys);  // uGIMP, cpGIMP
+}
+
 void bin_particles(const Particles& particles, StencilSource stencil, SparseGrid& grid,
                    ParticleBins& bins, const std::vector<std::uint64_t>& extra_keys,
                    const std::uint8_t* field, std::uint8_t which) {
-  const std::size_t n = particles.size();
-  bins.owner.resize(n);
-  if (stencil.shape == ShapeFunction::linear)
-    owner_keys<LinearShape>(particles, grid.geometry(), nullptr, bins.owner);
-  else
-    owner_keys<GimpShape>(particles, grid.geometry(), stencil.half_width,
-                          bins.owner);  // uGIMP, cpGIMP
+  owner_block_keys(particles, stencil, grid.geometry(), bins.owner);
 
   grid.clear();
   number_owner_blocks(bins.owner, grid, field, which);

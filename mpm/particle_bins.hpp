@@ -42,6 +42,10 @@ struct StencilSource {
   const std::vector<double>* half_width = nullptr;
 };
 
+// The key of each particle's owner block (the block of its stencil's lowest node).
+void owner_block_keys(const Particles& particles, StencilSource stencil,
+                      const GridGeometry& geometry, std::vector<std::uint64_t>& keys);
+
 // Rebuilds the grid's active blocks for this step and bins the particles. Owner blocks get the
 // block indices 0 .. owner_count()-1 in order of first appearance in the particle arrays; the
 // blocks they reach and the blocks in `extra_keys` follow. With `field` (one entry per particle),

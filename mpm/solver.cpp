@@ -515,6 +515,16 @@ EnergyReport Solver::energy() const {
   return e;
 }
 
+double Solver::peak_pressure() const {
+  announce(Command::pressure);
+  double peak = -std::numeric_limits<double>::infinity();
+  const auto n = static_cast<std::int64_t>(particles_.size());
+#pragma omp parallel for reduction(max : peak) schedule(static)
+  for (std::int64_t p = 0; p < n; ++p)
+    peak = std::max(peak, -trace_sym(&particles_.stress[6 * p]) / 3.0);
+  return max_over_ranks(peak);
+}
+
 std::size_t Solver::bytes() const {
   return particles_.bytes() + grid_.bytes() + bins_.bytes() + stencils_.bytes() +
          (volumetric_ ? volumetric_->bytes() : 0) + (contact_ ? contact_->bytes() : 0) +

@@ -147,10 +147,14 @@ class Solver {
   void drop_points();
   // The points of the run on every rank (after a step, or when all are on one rank).
   std::size_t point_count() const { return distributed() ? global_points_ : particles_.size(); }
-  // How often the partition was cut anew (the first cut included), and the points that changed
-  // rank.
+  // What a spread run moved between ranks, seen from this rank: how often the partition was cut
+  // (the first cut included; the last one at `cut_step`, taking the fullest rank from
+  // `imbalance_before` over the mean to `imbalance_after`), the points it sent or received as
+  // migrants, the ghost copies it received (summed over steps) and the bytes it sent.
   struct Sharing {
-    std::int64_t cuts = 0, migrated = 0, ghosts = 0;  // ghosts: copies received, summed over steps
+    std::int64_t cuts = 0, migrated = 0, ghosts = 0, bytes_sent = 0;
+    std::int64_t cut_step = -1;
+    double imbalance_before = 0.0, imbalance_after = 0.0;
   };
   const Sharing& sharing() const { return sharing_; }
 
@@ -184,6 +188,8 @@ class Solver {
   std::vector<RemovalEvent> take_removal_events();
 
   EnergyReport energy() const;
+  // The largest mean pressure -tr(sigma)/3 of any point now, Pa (collective; -inf without points).
+  double peak_pressure() const;
   PhaseTimer& timer() { return timer_; }
   const std::vector<ParticleRange>& material_ranges() const { return ranges_; }
   // Bytes held by particles, grid and bins now.
@@ -209,9 +215,10 @@ class Solver {
   void group_by_material();
   void add_ghosts();
   void drop_ghosts();
+  std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
-  enum class Command { stop, initialise, restore, step, energy, removal_events, gather };
+  enum class Command { stop, initialise, restore, step, energy, removal_events, gather, pressure };
   void announce(Command command, double argument = 0.0) const;
 
   // f(bins, grid, node average or nullptr) for each velocity field: the solver's, then contact's.

@@ -15,6 +15,7 @@
 // MUSL's remap scatters each point's updated velocity, which the point gathered: for the nodes
 // this rank reads to be right, the first ghost layer's gathers must be, which needs a second.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <numeric>
 
@@ -42,10 +43,10 @@ void Solver::distribute(Communicator* comm) {
 // rank (a cut is only as even as its largest group allows).
 void Solver::share_points() {
   auto t = timer_.scope("ranks: migrate points");
-  bin_particles();
   const std::size_t n = particles_.size();
-  std::vector<std::uint64_t> group(n);
-  for (std::size_t p = 0; p < n; ++p) group[p] = group_of_block(grid_.key(bins_.owner[p]));
+  std::vector<std::uint64_t> group;
+  owner_block_keys(particles_, {settings_.shape, half_width_}, geometry_, group);
+  for (auto& key : group) key = group_of_block(key);
   std::vector<std::uint64_t> keys = group;
   std::sort(keys.begin(), keys.end());
   std::vector<GroupLoad> mine;
@@ -55,14 +56,18 @@ void Solver::share_points() {
     else
       mine.push_back({k, 1});
   const std::vector<GroupLoad> loads = global_loads(*comm_, mine);
-  if (partition_.ranks() != comm_->size()) {
-    partition_ = Partition(loads, comm_->size());
-    ++sharing_.cuts;
-  } else if (const auto now = points_per_rank(partition_, loads); needs_rebalance(now)) {
+  const bool first = partition_.ranks() != comm_->size();
+  const auto now = points_per_rank(first ? Partition() : partition_, loads);
+  if (first || needs_rebalance(now)) {
     Partition cut(loads, comm_->size());
-    if (imbalance(points_per_rank(cut, loads)) < imbalance(now)) {
+    const double before = first ? 0.0 : imbalance(now);
+    const double after = imbalance(points_per_rank(cut, loads));
+    if (first || after < before) {
       partition_ = std::move(cut);
-      ++sharing_.cuts;
+      sharing_.cuts += 1;
+      sharing_.cut_step = state_.step;
+      sharing_.imbalance_before = before;
+      sharing_.imbalance_after = after;
     }
   }
   global_points_ = 0;
@@ -91,7 +96,7 @@ void Solver::migrate(const std::vector<int>& destination) {
     }
   std::vector<std::vector<double>> out(leaving.size());
   for (std::size_t r = 0; r < leaving.size(); ++r) out[r] = pack_points(particles_, leaving[r]);
-  const auto in = comm_->exchange(std::move(out));
+  const auto in = exchange(std::move(out));
   std::vector<std::size_t> sizes;
   for (const auto& range : ranges_) sizes.push_back(range.size());
   particles_.erase(gone, sizes);
@@ -120,15 +125,18 @@ void Solver::add_ghosts() {
   const int me = comm_->rank(), depth = ghost_depth_;
   std::vector<std::vector<std::uint32_t>> copies(static_cast<std::size_t>(comm_->size()));
   std::vector<int> ranks;
+  // The groups holding the blocks within `depth` of block coordinate c on one axis.
+  auto groups = [depth](int c) {
+    return std::array<int, 2>{std::max(0, c - depth) / 2, (c + depth) / 2};
+  };
   for (std::uint32_t b = 0; b < bins_.owner_count(); ++b) {
     const auto c = SparseGrid::block_coords(grid_.key(b));
+    const auto gx = groups(c[0]), gy = groups(c[1]), gz = groups(c[2]);
     ranks.clear();
-    for (int dz = -depth; dz <= depth; ++dz)
-      for (int dy = -depth; dy <= depth; ++dy)
-        for (int dx = -depth; dx <= depth; ++dx) {
-          const int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-          if (x < 0 || y < 0 || z < 0) continue;
-          const int r = partition_.rank_of(group_of_block(SparseGrid::block_key(x, y, z)));
+    for (int z = gz[0]; z <= gz[1]; ++z)
+      for (int y = gy[0]; y <= gy[1]; ++y)
+        for (int x = gx[0]; x <= gx[1]; ++x) {
+          const int r = partition_.rank_of(SparseGrid::block_key(x, y, z));
           if (r != me && std::find(ranks.begin(), ranks.end(), r) == ranks.end())
             ranks.push_back(r);
         }
@@ -140,7 +148,7 @@ void Solver::add_ghosts() {
   }
   std::vector<std::vector<double>> out(copies.size());
   for (std::size_t r = 0; r < copies.size(); ++r) out[r] = pack_points(particles_, copies[r]);
-  const auto in = comm_->exchange(std::move(out));
+  const auto in = exchange(std::move(out));
   for (std::size_t r = 0; r < in.size(); ++r)
     if (static_cast<int>(r) != me) append_points(particles_, in[r]);
   sharing_.ghosts += static_cast<std::int64_t>(particles_.size() - owned_);
@@ -150,6 +158,14 @@ void Solver::add_ghosts() {
 void Solver::drop_ghosts() {
   if (!distributed() || particles_.size() == owned_) return;
   particles_.resize(owned_);
+}
+
+// Sends out[r] to rank r, counting the bytes that leave this rank.
+std::vector<std::vector<double>> Solver::exchange(std::vector<std::vector<double>> out) {
+  for (std::size_t r = 0; r < out.size(); ++r)
+    if (static_cast<int>(r) != comm_->rank())
+      sharing_.bytes_sent += static_cast<std::int64_t>(out[r].size() * sizeof(double));
+  return comm_->exchange(std::move(out));
 }
 
 void Solver::announce(Command command, double argument) const {
@@ -187,6 +203,9 @@ void Solver::follow(const std::function<void()>& restore_points) {
         break;
       case Command::gather:
         gather_to_root();
+        break;
+      case Command::pressure:
+        (void)peak_pressure();
         break;
     }
   }

@@ -11,11 +11,7 @@
 namespace hvi::driver {
 
 void track(const mpm::Solver& solver, RunRecord& record) {
-  const auto& P = solver.particles();
-  double peak = record.peak_pressure;
-  for (std::size_t p = 0; p < P.size(); ++p)
-    peak = std::max(peak, -mpm::trace_sym(&P.stress[6 * p]) / 3.0);
-  record.peak_pressure = peak;
+  record.peak_pressure = std::max(record.peak_pressure, solver.peak_pressure());
 }
 
 namespace {

@@ -339,8 +339,15 @@ int SceneRun::time_loop() {
 // One step and what follows it: the zone's growth, energy.csv, snapshots, checkpoints, progress.
 void SceneRun::step() {
   mpm::Solver& s = *solver_;
+  const std::int64_t cuts = s.sharing().cuts;
   s.step(end_ - s.time());
   particle_steps_ += static_cast<double>(s.point_count());
+  if (s.sharing().cuts > cuts && cuts > 0)
+    fmt::print(
+        "  step {}: the partition among ranks cut anew: the fullest rank held {:.1f}% over "
+        "the mean, now {:.1f}%\n",
+        s.sharing().cut_step, 100 * s.sharing().imbalance_before,
+        100 * s.sharing().imbalance_after);
   report_removals(s, s.take_removal_events(), reported_removals_);
   if (hybrid_ && hybrid_->growing()) grow_zone();
   const bool last = at_end();
@@ -386,19 +393,21 @@ void SceneRun::grow_zone() {
 void SceneRun::log_energy() {
   mpm::Solver& s = *solver_;
   auto t = s.timer().scope("energy");
-  s.gather_to_root();  // the probes and the measures' records read every point
+  if (!probes_->empty()) s.gather_to_root();  // probes follow points wherever they are
   const mpm::EnergyReport e = s.energy();
   energy_log_->write(s, e);
   probes_->record(s);
   track(s, record_);
   if (scene_.max_energy_growth > 0 &&
-      e.total() - initial_energy_ > scene_.max_energy_growth * std::fabs(initial_energy_))
+      e.total() - initial_energy_ > scene_.max_energy_growth * std::fabs(initial_energy_)) {
+    s.gather_to_root();  // to name the fastest point of all
     s.fail(s.fastest_particle(),
            fmt::format("the total energy grew by {:.0f}% (run.max_energy_growth = {:.0f}%): the "
                        "run is unstable; "
                        "this particle moves fastest, at {:.4g} m/s",
                        100 * (e.total() / initial_energy_ - 1), 100 * scene_.max_energy_growth,
                        mpm::speed(s.particles(), s.fastest_particle())));
+  }
 }
 
 void SceneRun::write_output() {
@@ -540,10 +549,12 @@ void SceneRun::print_result(int code, double rate, std::size_t peak_memory,
   if (options_.ranks) {
     const auto& r = s.sharing();
     fmt::print(
-        "  ranks: {}; the partition cut {} times; rank 0 sent or received {} migrating points "
-        "and took {:.0f} ghost points a step\n",
+        "  ranks: {}; the partition cut {} times; rank 0 sent or received {} migrating points, "
+        "took {:.0f} ghost points a step and sent {:.3g} MB a step\n",
         options_.ranks->size(), r.cuts, r.migrated,
-        static_cast<double>(r.ghosts) / std::max<std::int64_t>(1, s.step_count() - first_step_));
+        static_cast<double>(r.ghosts) / std::max<std::int64_t>(1, s.step_count() - first_step_),
+        1e-6 * static_cast<double>(r.bytes_sent) /
+            std::max<std::int64_t>(1, s.step_count() - first_step_));
   }
 }
 
