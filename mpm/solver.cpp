@@ -38,6 +38,7 @@ Solver::Solver(GridGeometry grid, SolverSettings settings,
 TransferContext Solver::transfer_context() const {
   TransferContext c{settings_.shape, half_width_, settings_.flip, dt_};
   if (settings_.stencil_cache && is_gimp(settings_.shape) && !contact_) c.stencils = &stencils_;
+  if (distributed()) c.shared = &shared_;
   return c;
 }
 
@@ -171,7 +172,7 @@ void Solver::step(double max_dt) {
     auto t = timer_.scope("sort particles");
     sort_by_material_and_block();
   }
-  if (distributed()) add_ghosts();
+  if (distributed()) find_shared_blocks();
   switch (settings_.scheme) {
     case UpdateScheme::musl:
       particles_to_grid(Scatter::mass_momentum_force);
@@ -182,7 +183,6 @@ void Solver::step(double max_dt) {
       couple(GridStage::remapped);
       update_remapped_grid();
       compute_velocity_gradient(NodalVelocity::remapped);
-      drop_ghosts();  // the last transfer is done: from here on, this rank's own points only
       update_stress();
       break;
     case UpdateScheme::usl:
@@ -192,7 +192,6 @@ void Solver::step(double max_dt) {
       update_grid(true, true);
       grid_to_particles(false);
       compute_velocity_gradient(NodalVelocity::end);
-      drop_ghosts();
       update_stress();
       break;
     case UpdateScheme::usf:
@@ -241,7 +240,12 @@ void Solver::particles_to_grid(Scatter what) {
       context.mean_stress = &volumetric->mean_stress_sums(particles_, bins, grid, context);
     }
     auto t = timer_.scope("particles to grid");
+    // The components the scatter adds (grid.hpp: mass, momentum, force).
+    const int first = what == Scatter::force ? node_value::f : node_value::mass;
+    const int count = what == Scatter::mass_momentum ? 4 : what == Scatter::force ? 3 : 7;
+    if (distributed()) shared_.start(count);
     mpm::particles_to_grid(what, particles_, bins, grid, context);
+    if (distributed()) combine_shared(first, count);
   });
   if (contact_ && what != Scatter::force) {
     auto t = timer_.scope("contact: normals");
@@ -293,7 +297,9 @@ void Solver::update_remapped_grid() {
 void Solver::grid_to_particles(bool remap) {
   auto t = timer_.scope("grid to particles");
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, const VolumetricAverage*) {
+    if (remap && distributed()) shared_.start(3);
     mpm::grid_to_particles(particles_, bins, grid, transfer_context(), remap);
+    if (remap && distributed()) combine_shared(node_value::q, 3);
   });
 }
 

@@ -22,6 +22,7 @@
 #include "mpm/partition.hpp"
 #include "mpm/phase_timer.hpp"
 #include "mpm/shape_functions.hpp"
+#include "mpm/shared_blocks.hpp"
 #include "mpm/transfers.hpp"
 #include "mpm/types.hpp"
 #include "mpm/volumetric_average.hpp"
@@ -129,7 +130,7 @@ class Solver {
   // From then on initialise, restore, step, energy, take_removal_events and gather_to_root are
   // collective: every rank calls them alike. The points may start on any ranks (each once); the
   // first step sends each to the rank owning its group. Refuses what a spread run cannot do yet
-  // (USF, contact, the node-averaged dilatation; coupled models are refused by step()).
+  // (contact, the node-averaged dilatation; coupled models are refused by step()).
   void distribute(Communicator* comm);
   bool distributed() const { return comm_ != nullptr && comm_->size() > 1; }
   int rank() const { return comm_ ? comm_->rank() : 0; }
@@ -150,9 +151,10 @@ class Solver {
   // What a spread run moved between ranks, seen from this rank: how often the partition was cut
   // (the first cut included; the last one at `cut_step`, taking the fullest rank from
   // `imbalance_before` over the mean to `imbalance_after`), the points it sent or received as
-  // migrants, the ghost copies it received (summed over steps) and the bytes it sent.
+  // migrants, the blocks of nodes it shared with other ranks (summed over steps) and the bytes it
+  // sent.
   struct Sharing {
-    std::int64_t cuts = 0, migrated = 0, ghosts = 0, bytes_sent = 0;
+    std::int64_t cuts = 0, migrated = 0, shared_blocks = 0, bytes_sent = 0;
     std::int64_t cut_step = -1;
     double imbalance_before = 0.0, imbalance_after = 0.0;
   };
@@ -213,8 +215,8 @@ class Solver {
   void share_points();
   void migrate(const std::vector<int>& destination);
   void group_by_material();
-  void add_ghosts();
-  void drop_ghosts();
+  void find_shared_blocks();
+  void combine_shared(int first_component, int components);
   std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
@@ -258,13 +260,11 @@ class Solver {
   std::vector<std::uint32_t> escaped_;  // points move_particles() found outside the grid, ascending
   std::vector<MirrorPlane> mirrors_;    // the symmetry planes points are reflected at
   PhaseTimer timer_;
-  // A run spread over ranks: the ranks, the partition of the groups among them, and the ghost
-  // points (copies of other ranks' points near this rank's, after the first owned_ points, during
-  // the transfers of a step; ghost_depth_ blocks deep, see solver_ranks.cpp).
+  // A run spread over ranks: the ranks, the partition of the groups among them, and the blocks of
+  // nodes this rank shares with others this step (solver_ranks.cpp).
   Communicator* comm_ = nullptr;
   Partition partition_;
-  std::size_t owned_ = 0;
-  int ghost_depth_ = 0;
+  mutable SharedBlocks shared_;
   Sharing sharing_;
   bool leading_ = false;
   std::size_t global_points_ = 0;

@@ -1,19 +1,14 @@
 // A run spread over ranks. Each rank owns the points of the 2 x 2 x 2 block groups the partition
 // gives it (partition.hpp). At the start of a step, points that crossed into another rank's group
-// migrate there; then every rank receives copies ("ghosts") of the other ranks' points in the
-// owner blocks within ghost_depth_ blocks of its own, and runs the step's transfers over its
-// points and the ghosts together. A node's value is the colour-ordered sum of its groups' sums,
-// each summed over its blocks by key and its points by (material, id) (particle_bins.hpp), so
-// every node this rank's points read, having all its contributing blocks here, gets exactly the
-// bits a run on one rank gives it. After the last transfer the ghosts are dropped; the stress
-// update, motion and removal run on a rank's own points; the maxima and the exact sums are taken
-// over ranks. The results are bitwise those of one rank, for any rank count.
-//
-// How deep the ghosts must be. A point in owner block b reads and writes nodes of the blocks b to
-// b + 1 on each axis, so the nodes a block's points read receive from owner blocks b - 1 to
-// b + 1: one layer of ghost blocks makes every node this rank's points read complete (USL).
-// MUSL's remap scatters each point's updated velocity, which the point gathered: for the nodes
-// this rank reads to be right, the first ghost layer's gathers must be, which needs a second.
+// migrate there. Each rank scatters its own points; a block of nodes that groups of several ranks
+// write (a shared block) gets, from each rank, its groups' sums per colour, and every rank holding
+// it adds them in colour order (shared_blocks.hpp): the sum one rank forms, since a node's value
+// is the colour-ordered sum of its groups' sums, each summed over its blocks by key and its points
+// by (material, id) (particle_bins.hpp, group_sums.hpp). So every node a rank's points read holds
+// the bits a run on one rank gives it, after each pass that adds (the scatter, the MUSL remap),
+// and the gathers, the stress update, motion and removal need no more than a rank's own points.
+// The maxima and the exact sums are taken over ranks. The results are bitwise those of one rank,
+// for any rank count.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -29,12 +24,9 @@ namespace hvi::mpm {
 void Solver::distribute(Communicator* comm) {
   comm_ = comm;
   if (!distributed()) return;
-  if (settings_.scheme == UpdateScheme::usf)
-    throw SolverError("a run spread over ranks supports the MUSL and USL schemes, not USF, yet");
   if (contact_) throw SolverError("a run spread over ranks cannot use contact between bodies yet");
   if (settings_.dilatation == Dilatation::node_average)
     throw SolverError("a run spread over ranks cannot use the node-averaged dilatation yet");
-  ghost_depth_ = settings_.scheme == UpdateScheme::musl ? 2 : 1;
   partition_ = Partition();
 }
 
@@ -117,47 +109,104 @@ void Solver::group_by_material() {
   compute_material_ranges();
 }
 
-// Copies of the points of other ranks' owner blocks within ghost_depth_ blocks of this rank's,
-// appended after its own points; the bins then hold both.
-void Solver::add_ghosts() {
-  auto t = timer_.scope("ranks: ghost points");
-  owned_ = particles_.size();
-  const int me = comm_->rank(), depth = ghost_depth_;
-  std::vector<std::vector<std::uint32_t>> copies(static_cast<std::size_t>(comm_->size()));
-  std::vector<int> ranks;
-  // The groups holding the blocks within `depth` of block coordinate c on one axis.
-  auto groups = [depth](int c) {
-    return std::array<int, 2>{std::max(0, c - depth) / 2, (c + depth) / 2};
+// The blocks of this step's grid that groups of other ranks write too, with those ranks. Block x
+// (on one axis) is written by the groups x / 2 and, for an even x, x / 2 - 1 (a group's points
+// write its own blocks and the next one up, particle_bins.hpp).
+void Solver::find_shared_blocks() {
+  auto t = timer_.scope("ranks: shared nodes");
+  const int me = comm_->rank();
+  auto& s = shared_;
+  s.slot.assign(grid_.block_count(), SparseGrid::none);
+  s.block.clear();
+  s.ranks.clear();
+  auto writers = [](int x) {
+    return std::array<int, 2>{x % 2 == 0 && x > 0 ? x / 2 - 1 : x / 2, x / 2};
   };
-  for (std::uint32_t b = 0; b < bins_.owner_count(); ++b) {
+  std::vector<int> others;
+  for (std::uint32_t b = 0; b < grid_.block_count(); ++b) {
     const auto c = SparseGrid::block_coords(grid_.key(b));
-    const auto gx = groups(c[0]), gy = groups(c[1]), gz = groups(c[2]);
-    ranks.clear();
+    const auto gx = writers(c[0]), gy = writers(c[1]), gz = writers(c[2]);
+    others.clear();
     for (int z = gz[0]; z <= gz[1]; ++z)
       for (int y = gy[0]; y <= gy[1]; ++y)
         for (int x = gx[0]; x <= gx[1]; ++x) {
           const int r = partition_.rank_of(SparseGrid::block_key(x, y, z));
-          if (r != me && std::find(ranks.begin(), ranks.end(), r) == ranks.end())
-            ranks.push_back(r);
+          if (r != me && std::find(others.begin(), others.end(), r) == others.end())
+            others.push_back(r);
         }
-    for (const int r : ranks) {
-      auto& list = copies[static_cast<std::size_t>(r)];
-      list.insert(list.end(), bins_.order.begin() + bins_.offset[b],
-                  bins_.order.begin() + bins_.offset[b + 1]);
-    }
+    if (others.empty()) continue;
+    s.slot[b] = static_cast<std::uint32_t>(s.block.size());
+    s.block.push_back(b);
+    s.ranks.push_back(others);
   }
-  std::vector<std::vector<double>> out(copies.size());
-  for (std::size_t r = 0; r < copies.size(); ++r) out[r] = pack_points(particles_, copies[r]);
-  const auto in = exchange(std::move(out));
-  for (std::size_t r = 0; r < in.size(); ++r)
-    if (static_cast<int>(r) != me) append_points(particles_, in[r]);
-  sharing_.ghosts += static_cast<std::int64_t>(particles_.size() - owned_);
-  bin_particles();
+  sharing_.shared_blocks += static_cast<std::int64_t>(s.count());
 }
 
-void Solver::drop_ghosts() {
-  if (!distributed() || particles_.size() == owned_) return;
-  particles_.resize(owned_);
+// After a pass that added `components` node values from `first_component` on, with the shared
+// blocks' sums kept apart per colour: sends each shared block's colours to the ranks sharing it,
+// and sets its nodes to the colour-ordered sum of every rank's (shared_blocks.hpp). A message is,
+// per block: its key, the mask of its colours, then 64 nodes x components per colour.
+void Solver::combine_shared(int first_component, int components) {
+  auto t = timer_.scope("ranks: shared nodes");
+  auto& s = shared_;
+  constexpr int colours = SharedBlocks::colours, S = SharedBlocks::S;
+  const std::size_t per_colour = static_cast<std::size_t>(components) * S;
+  std::vector<std::vector<double>> out(static_cast<std::size_t>(comm_->size()));
+  for (std::size_t i = 0; i < s.count(); ++i) {
+    unsigned mask = 0;
+    for (int k = 0; k < colours; ++k)
+      if (s.has_local[i * colours + static_cast<std::size_t>(k)]) mask |= 1u << k;
+    if (mask == 0) continue;
+    for (const int r : s.ranks[i]) {
+      auto& o = out[static_cast<std::size_t>(r)];
+      o.push_back(std::bit_cast<double>(grid_.key(s.block[i])));
+      o.push_back(static_cast<double>(mask));
+      for (int k = 0; k < colours; ++k)
+        if (mask & (1u << k)) {
+          const double* sums =
+              s.local.data() + (i * colours + static_cast<std::size_t>(k)) * per_colour;
+          o.insert(o.end(), sums, sums + per_colour);
+        }
+    }
+  }
+  const auto in = exchange(std::move(out));
+  for (const auto& from : in)
+    for (std::size_t at = 0; at < from.size();) {
+      const std::uint32_t b = grid_.find(std::bit_cast<std::uint64_t>(from[at]));
+      const auto mask = static_cast<unsigned>(from[at + 1]);
+      at += 2;
+      const std::uint32_t i = b == SparseGrid::none ? SparseGrid::none : s.slot[b];
+      for (int k = 0; k < colours; ++k) {
+        if (!(mask & (1u << k))) continue;
+        if (i != SparseGrid::none) {
+          const std::size_t to =
+              static_cast<std::size_t>(i) * colours + static_cast<std::size_t>(k);
+          std::copy_n(&from[at], per_colour, s.remote.data() + to * per_colour);
+          s.has_remote[to] = 1;
+        }
+        at += per_colour;
+      }
+    }
+  const auto count = static_cast<std::int64_t>(s.count());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i)
+    for (int c = 0; c < components; ++c) {
+      double* node = grid_.values(s.block[static_cast<std::size_t>(i)], first_component + c);
+      for (int l = 0; l < S; ++l) {
+        double sum = 0.0;  // ((0 + G^0) + G^1) + ..., each colour from the rank holding its group
+        for (int k = 0; k < colours; ++k) {
+          const std::size_t at =
+              static_cast<std::size_t>(i) * colours + static_cast<std::size_t>(k);
+          const std::size_t value =
+              at * per_colour + static_cast<std::size_t>(c) * S + static_cast<std::size_t>(l);
+          if (s.has_local[at])
+            sum += s.local[value];
+          else if (s.has_remote[at])
+            sum += s.remote[value];
+        }
+        node[l] = sum;
+      }
+    }
 }
 
 // Sends out[r] to rank r, counting the bytes that leave this rank.

@@ -123,6 +123,7 @@ struct PassArgs {
   NodalVelocity which = NodalVelocity::start;
   double* out = nullptr;  // average_gather: abar_p; normals: g_I; gradient: tr L_p
   const std::vector<std::uint8_t>* owners = nullptr;
+  SharedBlocks* shared = nullptr;  // a pass that adds, in a run spread over ranks
 };
 
 // Per thread: the stencils of the block in hand and the patch's components.
@@ -473,32 +474,39 @@ double* added_target(const PassArgs& a, std::uint32_t b, int c) {
 
 // Every owner block (with `owners`, those marked), group by group in parallel, a group's blocks
 // in order; `coloured` (a pass that adds): colour by colour, each group's sums added to the nodes
-// once its blocks are done (group_sums.hpp, particle_bins.hpp).
+// once its blocks are done (group_sums.hpp, particle_bins.hpp), or, for a block shared with
+// other ranks, kept apart by colour (shared_blocks.hpp).
 void run_pass(const PassArgs& a, ShapeFunction shape, bool coloured) {
   const auto block = shape == ShapeFunction::linear ? run_block_linear : run_block_gimp;
   const ParticleBins& bins = *a.bins;
   const auto* owners = a.owners;
-  const auto group = [&](std::uint32_t g, Scratch& scratch) {
+  const auto group = [&](std::uint32_t g, Scratch& scratch, int colour) {
     if (coloured) scratch.sums.begin(added_components(a));
     for (std::uint32_t k = bins.group_offset[g]; k < bins.group_offset[g + 1]; ++k) {
       const std::uint32_t b = bins.group_owner[k];
       if (!owners || (*owners)[b]) block(a, b, scratch);
     }
-    if (coloured) scratch.sums.flush([&](std::uint32_t b, int c) { return added_target(a, b, c); });
+    if (coloured)
+      scratch.sums.flush([&](std::uint32_t b, int c) {
+        if (a.shared)
+          if (double* kept = a.shared->capture(b, colour, c)) return kept;
+        return added_target(a, b, c);
+      });
   };
 #pragma omp parallel
   {
     static thread_local Scratch scratch;  // kept from pass to pass: no allocation in the step
     if (coloured) {
-      for (const auto& colour : bins.colour) {
+      for (int k = 0; k < SharedBlocks::colours; ++k) {
+        const auto& colour = bins.colour[static_cast<std::size_t>(k)];
         const auto count = static_cast<std::int64_t>(colour.size());
 #pragma omp for schedule(dynamic, 1)
-        for (std::int64_t i = 0; i < count; ++i) group(colour[i], scratch);
+        for (std::int64_t i = 0; i < count; ++i) group(colour[i], scratch, k);
       }
     } else {
       const auto count = static_cast<std::int64_t>(bins.group_offset.size()) - 1;
 #pragma omp for schedule(dynamic, 1)
-      for (std::int64_t i = 0; i < count; ++i) group(static_cast<std::uint32_t>(i), scratch);
+      for (std::int64_t i = 0; i < count; ++i) group(static_cast<std::uint32_t>(i), scratch, -1);
     }
   }
 }
@@ -563,6 +571,7 @@ void particles_to_grid(Scatter what, const Particles& particles, const ParticleB
   const Setup s = make_setup(particles, grid, context, true);
   PassArgs a = pass_args(Pass::scatter, particles, bins, grid, s);
   a.what = what;
+  a.shared = context.shared;
   if (what != Scatter::mass_momentum) a.average = context.mean_stress;
   run_pass(a, context.shape, true);
   finish_pass(s, context);
@@ -619,6 +628,7 @@ void grid_to_particles(Particles& particles, const ParticleBins& bins, SparseGri
   PassArgs a = pass_args(Pass::velocity, particles, bins, grid, s);
   a.remap = remap;
   a.flip = context.flip;
+  if (remap) a.shared = context.shared;
   run_pass(a, context.shape, remap);
   finish_pass(s, context);
 }

@@ -11,6 +11,7 @@
 #include "mpm/particle_bins.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/shape_functions.hpp"
+#include "mpm/shared_blocks.hpp"
 
 namespace hvi::mpm {
 
@@ -88,6 +89,9 @@ struct TransferContext {
   // GIMP stencils kept between passes; nullptr: every pass evaluates its own. Only for a single
   // velocity field (the cache holds one stencil per point, on one grid's bins).
   StencilCache* stencils = nullptr;
+  // A run spread over ranks: the blocks this rank shares with others, whose sums the passes that
+  // add to the nodes (the scatter, the MUSL remap) keep apart per colour (shared_blocks.hpp).
+  SharedBlocks* shared = nullptr;
 };
 
 enum class Scatter {

@@ -4,11 +4,13 @@ ranks (mpirun -np N hvi run), from the per-point cost and the bytes per point me
 machine (docs/verification/benchmarks.md, "One run on two ranks"), for the two ways of sharing the
 nodes near a rank's edge:
 
-  ghost points (today): each rank copies its neighbours' points within 2 blocks (8 cells, MUSL)
-                        and recomputes their transfers; whole points (284 bytes) cross the network.
-  ghost nodes (planned): each rank scatters its own points only and sends the per-colour sums of
-                        the blocks it shares (mpm/group_sums.hpp), twice a step (scatter, remap):
-                        one block layer of nodes, 4 nodes deep, 7 doubles a node, no recomputation.
+  ghost points (the first version): each rank copies its neighbours' points within 2 blocks
+                        (8 cells, MUSL) and recomputes their transfers; whole points (284 bytes)
+                        cross the network.
+  shared blocks (today): each rank scatters its own points only and sends the per-colour sums of
+                        the blocks it shares (mpm/shared_blocks.hpp), twice a step (scatter,
+                        remap): one block layer of nodes, 4 nodes deep, 7 doubles a node, no
+                        recomputation.
 
 and for two ways of writing: every point gathered on rank 0 for output (today), or each rank
 writing its own points into one file collectively (planned, parallel HDF5; its cost not counted).
@@ -70,9 +72,9 @@ def table(title, rows):
 
 def main():
     counts = [1, 2, 4, 8, 16, 32, 64, 128, 256]
-    variants = ((False, True, "ghost points, output gathered on rank 0 (today)"),
-                (True, True, "ghost nodes, output gathered on rank 0"),
-                (True, False, "ghost nodes, output written collectively (planned)"))
+    variants = ((False, True, "ghost points, output gathered on rank 0 (the first version)"),
+                (True, True, "shared blocks, output gathered on rank 0 (today)"),
+                (True, False, "shared blocks, output written collectively (planned)"))
     for ghost_nodes, gathered, name in variants:
         t1, _ = step_time(1, POINTS, ghost_nodes, gathered)
         strong = []

@@ -550,9 +550,10 @@ void SceneRun::print_result(int code, double rate, std::size_t peak_memory,
     const auto& r = s.sharing();
     fmt::print(
         "  ranks: {}; the partition cut {} times; rank 0 sent or received {} migrating points, "
-        "took {:.0f} ghost points a step and sent {:.3g} MB a step\n",
+        "shared {:.0f} blocks of nodes a step and sent {:.3g} MB a step\n",
         options_.ranks->size(), r.cuts, r.migrated,
-        static_cast<double>(r.ghosts) / std::max<std::int64_t>(1, s.step_count() - first_step_),
+        static_cast<double>(r.shared_blocks) /
+            std::max<std::int64_t>(1, s.step_count() - first_step_),
         1e-6 * static_cast<double>(r.bytes_sent) /
             std::max<std::int64_t>(1, s.step_count() - first_step_));
   }

@@ -56,9 +56,11 @@ TEST(RunOnRanks, WritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
 TEST(RunOnRanks, RefusesWhatASpreadRunCannotDoYet) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path out = scratch("ranks_refused"), log = scratch("ranks_refused_log.txt");
-  EXPECT_EQ(on_ranks(2, "run " + demo + " --out " + out.string() + " --set grid.scheme=usf", log),
-            2);
-  EXPECT_NE(read(log).find("supports the MUSL and USL schemes, not USF"), std::string::npos)
+  EXPECT_EQ(
+      on_ranks(2, "run " + demo + " --out " + out.string() + " --set grid.dilatation=node-average",
+               log),
+      2);
+  EXPECT_NE(read(log).find("cannot use the node-averaged dilatation yet"), std::string::npos)
       << read(log);
   EXPECT_FALSE(fs::exists(out / "snapshots"));
 }

@@ -103,14 +103,14 @@ TEST_P(DistributedRun, IsBitwiseTheOneRankRun) {
   } else {
     EXPECT_EQ(spread.solver->particles().size(), 0u);  // all gathered to rank 0
   }
-  // Every rank held points, but never all of them; points migrated, and ghosts were sent.
+  // Every rank held points, but never all of them; points migrated, and blocks were shared.
   const auto all =
       one.solver->particles().size() + static_cast<std::size_t>(one.solver->removed().particles);
   EXPECT_GT(spread.most_points, 0u);
   EXPECT_LT(spread.most_points, all);
   const auto& s = spread.solver->sharing();
   EXPECT_GE(s.cuts, 1);
-  EXPECT_GT(s.ghosts, 0);
+  EXPECT_GT(s.shared_blocks, 0);
   EXPECT_GT(comm->max(static_cast<double>(s.migrated)), 0.0);
 }
 
@@ -118,7 +118,8 @@ INSTANTIATE_TEST_SUITE_P(
     Schemes, DistributedRun,
     ::testing::Values(Case{ShapeFunction::linear, UpdateScheme::musl, "linear_musl"},
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl"},
-                      Case{ShapeFunction::cpgimp, UpdateScheme::usl, "cpgimp_usl"}),
+                      Case{ShapeFunction::cpgimp, UpdateScheme::usl, "cpgimp_usl"},
+                      Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
