@@ -14,8 +14,6 @@
 #include <bit>
 #include <numeric>
 
-#include <fmt/format.h>
-
 #include "mpm/point_exchange.hpp"
 #include "mpm/solver.hpp"
 
