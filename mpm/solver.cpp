@@ -81,6 +81,7 @@ void Solver::initialise() {
   for (std::size_t m = 0; m < materials_.size(); ++m)
     signal = std::max(signal, materials_[m]->max_signal_speed(particles_, ranges_[m]));
   max_signal_speed_ = max_over_ranks(signal);
+  count_points();
   choose_time_step();
 }
 
@@ -115,8 +116,9 @@ void Solver::restore(const SolverState& state) {
   announce(Command::restore);
   for (const auto& m : materials_) m->declare_fields(particles_);
   if (is_gimp(settings_.shape)) half_width_ = &particles_.field(half_width_field);
-  compute_material_ranges();
+  group_by_material();  // a checkpoint lists its points by id
   state_ = state;
+  count_points();  // each rank read a share of them
 }
 
 void Solver::compute_material_ranges() {
@@ -214,6 +216,7 @@ void Solver::step(double max_dt) {
   state_.time += dt_;
   state_.step += 1;
   remove_escaped_particles();
+  count_points();
   choose_time_step();
 }
 

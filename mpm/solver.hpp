@@ -134,18 +134,26 @@ class Solver {
   void distribute(Communicator* comm);
   bool distributed() const { return comm_ != nullptr && comm_->size() > 1; }
   int rank() const { return comm_ ? comm_->rank() : 0; }
+  int ranks() const { return distributed() ? comm_->size() : 1; }
+  // The ranks of a spread run (nullptr on one rank): output written by every rank at once.
+  Communicator* communicator() const { return distributed() ? comm_ : nullptr; }
   // Collective: moves every point to rank 0, for output written there; the next step spreads
   // them again.
   void gather_to_root();
   // A driver that runs on rank 0 only: there, lead() makes each collective call tell the other
-  // ranks, which wait in follow(), to make it too; `restore_points` is what a follower does when
-  // rank 0 restores a checkpoint (read it, declaring the same fields, and drop_points()).
-  // stop_followers() (on rank 0, once its driver is done) ends their follow().
+  // ranks, which wait in follow(), to make it too. What a follower does beyond the solver's own
+  // calls: `restore` when rank 0 restores a checkpoint (read its share of the points, declaring
+  // the same fields), and `write(what)` when rank 0 writes a file every rank writes a part of
+  // (announce_write(what); mpm/io/). stop_followers() (on rank 0, once its driver is done) ends
+  // their follow().
+  struct FollowerHooks {
+    std::function<void()> restore;
+    std::function<void(double what)> write;
+  };
   void lead() { leading_ = true; }
-  void follow(const std::function<void()>& restore_points);
+  void follow(const FollowerHooks& hooks);
+  void announce_write(double what) const { announce(Command::write, what); }
   static void stop_followers(Communicator& comm);
-  // Forgets every point (a follower that read a checkpoint rank 0 holds the points of).
-  void drop_points();
   // The points of the run on every rank (after a step, or when all are on one rank).
   std::size_t point_count() const { return distributed() ? global_points_ : particles_.size(); }
   // What a spread run moved between ranks, seen from this rank: how often the partition was cut
@@ -213,6 +221,7 @@ class Solver {
   void choose_time_step();
   // A run spread over ranks (solver_ranks.cpp).
   void share_points();
+  void count_points();  // collective: the points on every rank, for point_count()
   void migrate(const std::vector<int>& destination);
   void group_by_material();
   void find_shared_blocks();
@@ -220,7 +229,17 @@ class Solver {
   std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
-  enum class Command { stop, initialise, restore, step, energy, removal_events, gather, pressure };
+  enum class Command {
+    stop,
+    initialise,
+    restore,
+    step,
+    energy,
+    removal_events,
+    gather,
+    pressure,
+    write
+  };
   void announce(Command command, double argument = 0.0) const;
 
   // f(bins, grid, node average or nullptr) for each velocity field: the solver's, then contact's.

@@ -67,6 +67,13 @@ void Solver::share_points() {
   migrate(destination);
 }
 
+void Solver::count_points() {
+  if (!distributed()) return;
+  global_points_ = 0;
+  for (const auto& count : comm_->all_gather({static_cast<double>(particles_.size())}))
+    global_points_ += static_cast<std::size_t>(count.at(0));
+}
+
 void Solver::gather_to_root() {
   if (!distributed()) return;
   announce(Command::gather);
@@ -226,7 +233,7 @@ void Solver::stop_followers(Communicator& comm) {
   comm.broadcast(message);
 }
 
-void Solver::follow(const std::function<void()>& restore_points) {
+void Solver::follow(const FollowerHooks& hooks) {
   for (;;) {
     std::vector<double> message;
     comm_->broadcast(message);
@@ -237,7 +244,7 @@ void Solver::follow(const std::function<void()>& restore_points) {
         initialise();
         break;
       case Command::restore:
-        restore_points();
+        hooks.restore();
         break;
       case Command::step:
         step(message.at(1));
@@ -254,13 +261,11 @@ void Solver::follow(const std::function<void()>& restore_points) {
       case Command::pressure:
         (void)peak_pressure();
         break;
+      case Command::write:
+        hooks.write(message.at(1));
+        break;
     }
   }
-}
-
-void Solver::drop_points() {
-  particles_.resize(0);
-  compute_material_ranges();
 }
 
 // Every rank's removal events on every rank, listed by step, then id, as one rank lists them.

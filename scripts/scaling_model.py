@@ -12,8 +12,10 @@ nodes near a rank's edge:
                         remap): one block layer of nodes, 4 nodes deep, 7 doubles a node, no
                         recomputation.
 
-and for two ways of writing: every point gathered on rank 0 for output (today), or each rank
-writing its own points into one file collectively (planned, parallel HDF5; its cost not counted).
+and for two ways of writing: every point gathered on rank 0 for output (the driver until
+collective output), or each rank writing the rows of its slab of ids into one file collectively
+(today, parallel HDF5): every point's snapshot values go once to the rank of its slab; the file
+system's own time is not counted.
 
 Usage: scripts/scaling_model.py   (prints the Markdown tables of docs/verification/scaling_model.md)
 """
@@ -33,6 +35,7 @@ NODE_LAYER = 4              # a shared block layer, nodes
 BYTES_PER_NODE = 7 * 8      # mass, momentum, force (the remap: 4 doubles; counted as 7)
 STEPS_PER_OUTPUT = 100      # a snapshot or an energy row with probes every 100 steps
 MIGRATING = 0.002           # share of a rank's points that change rank in a step
+SNAPSHOT_BYTES = 232        # measured: the demo's snapshot, 29.3 MB for 126,327 points
 
 
 def piece_edge(points_per_rank):
@@ -40,7 +43,7 @@ def piece_edge(points_per_rank):
     return (points_per_rank / POINTS_PER_CELL) ** (1.0 / 3.0)
 
 
-def step_time(ranks, points_per_rank, ghost_nodes, gathered):
+def step_time(ranks, points_per_rank, ghost_nodes, gathered, slabs=False):
     rate = RATE_PER_CORE * CORES_PER_RANK * THREAD_EFFICIENCY
     L = piece_edge(points_per_rank)
     surface = 6 * L * L if ranks > 1 else 0.0  # cells on the piece's faces
@@ -58,6 +61,9 @@ def step_time(ranks, points_per_rank, ghost_nodes, gathered):
     gather = 0.0
     if gathered and ranks > 1:
         gather = 2 * ranks * points_per_rank * BYTES_PER_POINT / LINK / STEPS_PER_OUTPUT
+    # Written by slabs of ids: each rank's points' values to their slab's rank, once per output.
+    if slabs and ranks > 1:
+        gather = points_per_rank * SNAPSHOT_BYTES / LINK / STEPS_PER_OUTPUT
     return work / rate + network + gather, work / points_per_rank - 1.0
 
 
@@ -73,20 +79,20 @@ def table(title, rows):
 def main():
     counts = [1, 2, 4, 8, 16, 32, 64, 128, 256]
     variants = ((False, True, "ghost points, output gathered on rank 0 (the first version)"),
-                (True, True, "shared blocks, output gathered on rank 0 (today)"),
-                (True, False, "shared blocks, output written collectively (planned)"))
+                (True, True, "shared blocks, output gathered on rank 0 (the second version)"),
+                (True, False, "shared blocks, output written collectively by slabs of ids (today)"))
     for ghost_nodes, gathered, name in variants:
-        t1, _ = step_time(1, POINTS, ghost_nodes, gathered)
+        t1, _ = step_time(1, POINTS, ghost_nodes, gathered, not gathered)
         strong = []
         for p in counts:
-            t, g = step_time(p, POINTS / p, ghost_nodes, gathered)
+            t, g = step_time(p, POINTS / p, ghost_nodes, gathered, not gathered)
             strong.append((p, POINTS / p, t, t1 / t, t1 / t / p, g))
         table(f"Strong scaling, {name}: {POINTS:.3g} points", strong)
         n = POINTS / 16
-        tw, _ = step_time(1, n, ghost_nodes, gathered)
+        tw, _ = step_time(1, n, ghost_nodes, gathered, not gathered)
         weak = []
         for p in counts:
-            t, g = step_time(p, n, ghost_nodes, gathered)
+            t, g = step_time(p, n, ghost_nodes, gathered, not gathered)
             weak.append((p, n, t, p * tw / t, tw / t, g))
         table(f"Weak scaling, {name}: {n:.3g} points per rank", weak)
 

@@ -9,6 +9,7 @@ HVI_BUILD="${HVI_BUILD:-$HVI_ROOT/build}"
 packages=(
   cmake make g++ git pkg-config clang-format
   libtomlplusplus-dev libcli11-dev libfmt-dev libhdf5-dev libeigen3-dev libcgal-dev
+  libhdf5-openmpi-dev  # the ranks of one run write each snapshot together (parallel HDF5)
   libgtest-dev libgmock-dev libbenchmark-dev
   libdeal.ii-dev  # the finite-element far field (fem/): deal.II 9.4
   openmpi-bin libopenmpi-dev  # mpirun -np N hvi sweep (parallel/), and its tests

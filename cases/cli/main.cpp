@@ -38,6 +38,7 @@
 #include "cases/cli/probe_command.hpp"
 #include "cases/cli/sweep_command.hpp"
 #include "cases/parallel/mpi_communicator.hpp"
+#include "cases/parallel/mpi_file_access.hpp"
 #include "cases/parallel/ranks.hpp"
 #include "cases/run/build_solver.hpp"
 #include "cases/run/hybrid.hpp"
@@ -281,8 +282,10 @@ void add_analysis_commands(CLI::App& app, Commands& c) {
 // spread over its ranks.
 int run(Commands& c, const std::string& command_line, const hvi::parallel::Ranks& ranks) {
   const auto communicator = hvi::parallel::make_communicator(ranks);
+  const auto shared_files = hvi::parallel::make_file_access(ranks);
   hvi::driver::RunOptions options;
   options.ranks = communicator.get();
+  options.shared_files = shared_files.get();
   options.threads = c.threads;
   options.overwrite = c.overwrite;
   options.max_memory = memory_bytes(c.max_memory);

@@ -98,6 +98,7 @@ class SceneRun {
   void measure_holes();
   void write_snapshots();
   void checkpoint(double wall);
+  bool measures_read_points() const;
   void check_same_state() const;
   void print_result(int code, double rate, std::size_t peak_memory, const mpm::EnergyReport& e,
                     double balance) const;
@@ -217,7 +218,7 @@ void SceneRun::prepare_directory() {
 void SceneRun::open_logs() {
   const mpm::Solver& s = *solver_;
   const std::int64_t resume_step = options_.resume ? s.step_count() : -1;
-  snapshots_.emplace(dir_);
+  snapshots_.emplace(dir_, options_.shared_files);
   snapshots_->keep_newest(static_cast<std::size_t>(scene_.keep_snapshots));
   const auto holes = std::find_if(scene_.measures.begin(), scene_.measures.end(),
                                   [](const auto& m) { return m.kind == "holes"; });
@@ -258,7 +259,7 @@ void SceneRun::resume_state() {
   earlier_wall_ =
       recorded != extras_.end() ? recorded->second : std::numeric_limits<double>::quiet_NaN();
   fmt::print("hvi: resuming {} at step {}, t = {:.6g} s ({} particles, {} threads)\n",
-             dir_.string(), s.step_count(), s.time(), s.particles().size(), threads_);
+             dir_.string(), s.step_count(), s.time(), s.point_count(), threads_);
 }
 
 int SceneRun::start_at_zero() {
@@ -413,7 +414,7 @@ void SceneRun::log_energy() {
 void SceneRun::write_output() {
   mpm::Solver& s = *solver_;
   auto t = s.timer().scope("write snapshots");
-  s.gather_to_root();
+  if (!options_.shared_files) s.gather_to_root();  // else every rank writes its points
   write_snapshots();
   output_.advance(s.time());
   progress_->snapshot_written(s);
@@ -459,10 +460,20 @@ void SceneRun::check_same_state() const {
       dir_.string(), scene::resumable_keys));
 }
 
+// Whether the closing measures read the points themselves (then gathered on rank 0 of a run spread
+// over ranks), not only the snapshots, the energies and the records.
+bool SceneRun::measures_read_points() const {
+  if (!probes_->empty()) return true;
+  return std::any_of(scene_.measures.begin(), scene_.measures.end(), [](const auto& m) {
+    return m.kind == "extent_max" || m.kind == "extent_min" || m.kind == "diameter" ||
+           m.kind == "field_max" || m.kind == "field_min";
+  });
+}
+
 // wall: this invocation's time-loop seconds up to the state written.
 void SceneRun::checkpoint(double wall) {
   auto t = solver_->timer().scope("write checkpoint");
-  solver_->gather_to_root();
+  if (!options_.shared_files) solver_->gather_to_root();  // else every rank writes its points
   last_checkpoint_step_ = solver_->step_count();
   mpm::io::CheckpointExtras extras{{"next_output_time", output_.next},
                                    {"next_checkpoint_time", checkpoints_.next},
@@ -473,14 +484,14 @@ void SceneRun::checkpoint(double wall) {
       hash_halves(scene::state_hash(scene_));
   probes_->save(extras);
   if (hybrid_) hybrid_->save(extras);
-  mpm::io::write_checkpoint(dir_ / "checkpoint.h5", *solver_, extras);
+  mpm::io::write_checkpoint(dir_ / "checkpoint.h5", *solver_, extras, options_.shared_files);
 }
 
 // The closing account: the result, the energy ledger, the far field, the measures and the time
 // per phase on the console; timing.csv, the holes of the final snapshot and summary.json/.toml.
 int SceneRun::finish(int code) {
   mpm::Solver& s = *solver_;
-  s.gather_to_root();
+  if (measures_read_points()) s.gather_to_root();
   const mpm::EnergyReport e = s.energy();
   const double balance =
       initial_energy_ != 0.0 ? (e.total() - initial_energy_) / initial_energy_ : 0.0;
@@ -606,7 +617,7 @@ toml::table SceneRun::summary(const char* status, double rate, std::size_t peak_
   const mpm::Solver& s = *solver_;
   toml::table summary{{"time", s.time()},
                       {"steps", s.step_count()},
-                      {"particles", static_cast<std::int64_t>(s.particles().size())},
+                      {"particles", static_cast<std::int64_t>(s.point_count())},
                       {"wall_seconds", wall_},
                       {"particle_steps_per_second", rate},
                       {"threads", threads_},
@@ -722,11 +733,20 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
     while (message.at(0) != 0.0);
     return input_error;
   }
+  // Rank 0 says which file to write a part of: a snapshot's index, or the checkpoint.
+  const auto write = [&](double what) {
+    const fs::path checkpoint = options.out / "checkpoint.h5";
+    if (what == mpm::io::checkpoint_file)
+      mpm::io::write_checkpoint(checkpoint, *solver, {}, options.shared_files);
+    else
+      mpm::io::write_snapshot_file(
+          mpm::io::SnapshotWriter::temporary(
+              options.out / mpm::io::SnapshotWriter::file_name(static_cast<std::size_t>(what))),
+          *solver, options.shared_files);
+  };
   try {
-    solver->follow([&] {
-      mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver);
-      solver->drop_points();  // rank 0 holds them until the first step spreads them
-    });
+    solver->follow(
+        {[&] { mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver); }, write});
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi: rank {}: the run failed: {}\n", options.ranks->rank(), e.what());
     std::fflush(nullptr);
@@ -747,13 +767,8 @@ class FollowersStop {
   mpm::Communicator& ranks_;
 };
 
-}  // namespace
-
 // The phases of a run, in order; each returns at the first error with its exit code.
-int run_scene(const scene::Scene& scene, const RunOptions& options) {
-  if (options.ranks && options.ranks->rank() != 0) return follow_scene(scene, options);
-  std::optional<FollowersStop> stop;
-  if (options.ranks) stop.emplace(*options.ranks);
+int lead_scene(const scene::Scene& scene, const RunOptions& options) {
   SceneRun run(scene, options);
   if (const int code = run.check_directory(); code != success) return code;
   if (const int code = run.build(); code != success) return code;  // nothing written yet
@@ -763,6 +778,24 @@ int run_scene(const scene::Scene& scene, const RunOptions& options) {
   const int code = run.time_loop();
   if (code == run_failed) return code;
   return run.finish(code);
+}
+
+}  // namespace
+
+int run_scene(const scene::Scene& scene, const RunOptions& options) {
+  if (!options.ranks) return lead_scene(scene, options);
+  if (options.ranks->rank() != 0) return follow_scene(scene, options);
+  const FollowersStop stop(*options.ranks);
+  try {
+    return lead_scene(scene, options);
+  } catch (const std::exception& e) {
+    // The other ranks may be waiting inside a collective call (a shared file's write): the job
+    // ends here.
+    fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
+    std::fflush(nullptr);
+    options.ranks->abort(run_failed);
+  }
+  return run_failed;  // not reached: abort() ends the job
 }
 
 }  // namespace hvi::driver

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cases/scene/scene.hpp"
+#include "mpm/io/hdf5_file.hpp"
 #include "mpm/solver.hpp"
 
 namespace hvi::driver {
@@ -19,8 +20,11 @@ struct RunOptions {
   std::string command_line;  // recorded in run.json
   double max_memory = 0;     // bytes the bodies' points may take; 0: what the machine has free
   // The ranks of an MPI job the run is spread over (mpm/solver_ranks.cpp), or nullptr: one rank.
-  // Rank 0 runs the driver and writes everything; the others step with it.
+  // Rank 0 runs the driver; the others step with it.
   mpm::Communicator* ranks = nullptr;
+  // How they write each snapshot and checkpoint together, each its own points (nullptr: rank 0
+  // gathers every point and writes alone).
+  const mpm::io::SharedFileAccess* shared_files = nullptr;
 };
 
 // Exit codes of `hvi run`: 128 + the signal for a run stopped by SIGINT (Ctrl-C) or SIGTERM (what a

@@ -188,8 +188,8 @@ OutputSize output_size(const mpm::Solver& s, const scene::Scene& scene, double n
   if (scene.keep_snapshots > 0)
     o.snapshots = std::min(o.snapshots,
                            static_cast<double>(scene.keep_snapshots) + (next_output > 0 ? 1 : 2));
-  o.snapshot = static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) *
-                                   s.particles().size());
+  o.snapshot =
+      static_cast<double>(mpm::io::snapshot_bytes_per_particle(s.particles()) * s.point_count());
   o.checkpoint = static_cast<double>(mpm::io::checkpoint_bytes(s));
   o.total = o.snapshots * o.snapshot + (fresh ? 2.0 : 1.0) * o.checkpoint;
   return o;

@@ -57,16 +57,39 @@ void check_status(herr_t status, const std::string& what, const std::string& pat
   if (status < 0) fail(what, path);
 }
 
+// Selects rows [first, first + count) of a dataset of `columns` columns (none if count is 0).
+void select_rows(hid_t space, std::size_t first, std::size_t count, std::size_t columns) {
+  if (count == 0) {
+    H5Sselect_none(space);
+    return;
+  }
+  const hsize_t start[2] = {first, 0}, size[2] = {count, columns};
+  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, size, nullptr);
+}
+
+// The rows' values in memory: count x columns (a one-row space with nothing selected for none).
+hid_t memory_space(std::size_t count, std::size_t columns) {
+  const hsize_t dims[2] = {std::max<std::size_t>(count, 1), columns};
+  const hid_t space = H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr);
+  if (count == 0) H5Sselect_none(space);
+  return space;
+}
+
 void write_dataset(hid_t file, const std::string& path, const std::string& name, hid_t type,
-                   const void* data, std::size_t rows, std::size_t columns, bool checksum) {
-  const hsize_t dims[2] = {rows, columns};
+                   const void* data, Hdf5File::Rows rows, std::size_t columns, bool checksum,
+                   const SharedFileAccess* shared) {
+  const hsize_t dims[2] = {rows.total, columns};
   const int rank = columns == 1 ? 1 : 2;
   Handle space{check(H5Screate_simple(rank, dims, nullptr), "create dataspace", path), H5Sclose};
   Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
   H5Pset_obj_track_times(dcpl.id, false);
-  if (checksum && rows * columns > 0) {
+  // Space taken when the dataset is made and never pre-filled: the layout a shared file needs
+  // (MPI-IO), so one rank and many lay a file out alike.
+  H5Pset_alloc_time(dcpl.id, H5D_ALLOC_TIME_EARLY);
+  H5Pset_fill_time(dcpl.id, H5D_FILL_TIME_NEVER);
+  if (checksum && rows.total * columns > 0) {
     // Chunks of up to 65,536 rows, each with its Fletcher-32 checksum.
-    const hsize_t chunk[2] = {std::min<hsize_t>(rows, 65536), columns};
+    const hsize_t chunk[2] = {std::min<hsize_t>(rows.total, 65536), columns};
     check_status(H5Pset_chunk(dcpl.id, rank, chunk), "chunk dataset '" + name + "'", path);
     check_status(H5Pset_fletcher32(dcpl.id), "checksum dataset '" + name + "'", path);
   }
@@ -74,9 +97,14 @@ void write_dataset(hid_t file, const std::string& path, const std::string& name,
       check(H5Dcreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT),
             "create dataset '" + name + "'", path),
       H5Dclose};
-  if (rows * columns > 0)
-    check_status(H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-                 "write dataset '" + name + "'", path);
+  if (rows.total * columns == 0) return;
+  select_rows(space.id, rows.first, rows.rows, columns);
+  Handle memory{memory_space(rows.rows, columns), H5Sclose};
+  Handle dxpl{H5Pcreate(H5P_DATASET_XFER), H5Pclose};
+  if (shared) shared->set_transfer(dxpl.id);
+  const double none = 0.0;  // a valid address for a rank that writes no rows
+  check_status(H5Dwrite(set.id, type, memory.id, space.id, dxpl.id, rows.rows > 0 ? data : &none),
+               "write dataset '" + name + "'", path);
 }
 
 void write_attr(hid_t file, const std::string& path, const std::string& name, hid_t type,
@@ -90,8 +118,11 @@ void write_attr(hid_t file, const std::string& path, const std::string& name, hi
 
 }  // namespace
 
-Hdf5File::Hdf5File(const std::string& path, Mode mode)
-    : path_(path), created_(mode == Mode::create), exceptions_at_open_(std::uncaught_exceptions()) {
+Hdf5File::Hdf5File(const std::string& path, Mode mode, const SharedFileAccess* shared)
+    : path_(path),
+      created_(mode != Mode::read),
+      exceptions_at_open_(std::uncaught_exceptions()),
+      shared_(shared) {
   // A file whose close failed (its last writes refused by a full disk) stays in HDF5's table, and
   // the library's exit handler (1.10) crashes closing it again; every file here is closed by its
   // owner, so the process exits without that handler and keeps its exit code. Must precede the
@@ -104,7 +135,12 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode)
     Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
     // The oldest format that holds our data gives stable bytes across library versions.
     H5Pset_libver_bounds(fapl.id, H5F_LIBVER_EARLIEST, H5F_LIBVER_V18);
+    if (shared) shared->set_file_access(fapl.id);
     file_ = check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.id, fapl.id), "create file", path);
+  } else if (mode == Mode::append) {
+    Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
+    H5Pset_libver_bounds(fapl.id, H5F_LIBVER_EARLIEST, H5F_LIBVER_V18);
+    file_ = check(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.id), "open file", path);
   } else {
     file_ = check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open file", path);
   }
@@ -131,12 +167,22 @@ void Hdf5File::close() {
 
 void Hdf5File::write(const std::string& name, const double* data, std::size_t rows,
                      std::size_t columns) {
-  write_dataset(file_, path_, name, H5T_NATIVE_DOUBLE, data, rows, columns, checksums_);
+  write_rows(name, data, {0, rows, rows}, columns);
 }
 
 void Hdf5File::write(const std::string& name, const std::int64_t* data, std::size_t rows,
                      std::size_t columns) {
-  write_dataset(file_, path_, name, H5T_NATIVE_INT64, data, rows, columns, checksums_);
+  write_rows(name, data, {0, rows, rows}, columns);
+}
+
+void Hdf5File::write_rows(const std::string& name, const double* data, Rows rows,
+                          std::size_t columns) {
+  write_dataset(file_, path_, name, H5T_NATIVE_DOUBLE, data, rows, columns, checksums_, shared_);
+}
+
+void Hdf5File::write_rows(const std::string& name, const std::int64_t* data, Rows rows,
+                          std::size_t columns) {
+  write_dataset(file_, path_, name, H5T_NATIVE_INT64, data, rows, columns, checksums_, shared_);
 }
 
 void Hdf5File::write_attribute(const std::string& name, double value) {
@@ -192,6 +238,34 @@ std::vector<T> read_all(hid_t file, const std::string& path, const std::string& 
   return data;
 }
 }  // namespace
+
+namespace {
+template <class T>
+std::vector<T> read_some(hid_t file, const std::string& path, const std::string& name, hid_t type,
+                         std::size_t first, std::size_t count, std::size_t columns) {
+  Handle set{check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path),
+             H5Dclose};
+  std::vector<T> data(count * columns);
+  if (data.empty()) return data;
+  Handle space{H5Dget_space(set.id), H5Sclose};
+  select_rows(space.id, first, count, columns);
+  Handle memory{memory_space(count, columns), H5Sclose};
+  check_status(H5Dread(set.id, type, memory.id, space.id, H5P_DEFAULT, data.data()),
+               "read rows of dataset '" + name + "'", path);
+  return data;
+}
+}  // namespace
+
+std::vector<double> Hdf5File::read_doubles(const std::string& name, std::size_t first,
+                                           std::size_t count) const {
+  return read_some<double>(file_, path_, name, H5T_NATIVE_DOUBLE, first, count, shape(name).second);
+}
+
+std::vector<std::int64_t> Hdf5File::read_integers(const std::string& name, std::size_t first,
+                                                  std::size_t count) const {
+  return read_some<std::int64_t>(file_, path_, name, H5T_NATIVE_INT64, first, count,
+                                 shape(name).second);
+}
 
 std::vector<double> Hdf5File::read_doubles(const std::string& name) const {
   const auto [r, c] = shape(name);

@@ -8,12 +8,18 @@
 #include <fmt/format.h>
 
 #include "mpm/io/hdf5_file.hpp"
+#include "mpm/io/id_slabs.hpp"
 
 namespace hvi::mpm::io {
 
 namespace fs = std::filesystem;
 
-SnapshotWriter::SnapshotWriter(fs::path run_directory) : directory_(std::move(run_directory)) {}
+SnapshotWriter::SnapshotWriter(fs::path run_directory, const SharedFileAccess* shared)
+    : directory_(std::move(run_directory)), shared_(shared) {}
+
+fs::path SnapshotWriter::temporary(const fs::path& file) {
+  return file.string() + ".tmp";
+}
 
 std::string SnapshotWriter::file_name(std::size_t index) {
   return fmt::format("snapshots/particles_{:06d}.h5", index);
@@ -35,72 +41,69 @@ std::map<std::size_t, fs::path> SnapshotWriter::files(const fs::path& run_direct
 
 namespace {
 
-// Gathers a field in id order.
-template <class T>
-std::vector<T> in_order(const std::vector<T>& field, int nc,
-                        const std::vector<std::uint32_t>& order) {
-  std::vector<T> out(order.size() * nc);
-  for (std::size_t k = 0; k < order.size(); ++k)
-    for (int c = 0; c < nc; ++c)
-      out[k * nc + c] = field[order[k] * static_cast<std::size_t>(nc) + c];
-  return out;
-}
-
 constexpr int derived_fields = 4;  // density, pressure, von Mises stress, volume ratio
 
-// Writes the snapshot datasets of `solver` to `path`; returns the attributes in order.
-std::vector<std::pair<std::string, std::pair<int, bool>>> write_datasets(
-    const std::filesystem::path& path, const Solver& solver) {
+using Datasets =
+    std::vector<std::pair<std::string, std::pair<int, bool>>>;  // (components, integer)
+
+// Writes the snapshot datasets of `solver` to `path`, each rank its rows with `shared`
+// (collective); then one rank adds the attributes. Returns the datasets in order and the number of
+// points.
+std::pair<Datasets, std::size_t> write_datasets(const fs::path& path, const Solver& solver,
+                                                const SharedFileAccess* shared) {
   const Particles& P = solver.particles();
   const std::size_t n = P.size();
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return P.id[a] < P.id[b]; });
-
-  std::vector<std::pair<std::string, std::pair<int, bool>>>
-      attributes;  // name, (components, integer)
-  Hdf5File file(path.string(), Hdf5File::Mode::create);
-  file.write_attribute("time", solver.time());
-  file.write_attribute("step", static_cast<std::int64_t>(solver.step_count()));
-
-  file.write("position", in_order(P.position, 3, order).data(), n, 3);
-  for (const auto& f : P.real_fields()) {
-    if (!f.output || f.scratch) continue;
-    const int nc = components(f.kind);
-    file.write(f.name, in_order(*f.data, nc, order).data(), n, nc);
-    attributes.push_back({f.name, {nc, false}});
+  const IdSlabs slabs(P, shared ? solver.communicator() : nullptr);
+  const Hdf5File::Rows rows = slabs.rows();
+  Datasets datasets;
+  {
+    Hdf5File file(path.string(), Hdf5File::Mode::create, shared);
+    file.write_rows("position", slabs.gather(P.position, 3).data(), rows, 3);
+    for (const RealField* f : by_name(P, [](const RealField& f) { return f.output; })) {
+      const int nc = components(f->kind);
+      file.write_rows(f->name, slabs.gather(*f->data, nc).data(), rows,
+                      static_cast<std::size_t>(nc));
+    }
+    for (const auto& f : P.real_fields())  // listed as declared (the index's order)
+      if (f.output && !f.scratch) datasets.push_back({f.name, {components(f.kind), false}});
+    // Derived fields a hydrocode user expects to plot.
+    std::vector<double> density(n), pressure(n), mises(n), ratio(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      density[p] = P.mass[p] / P.volume[p];
+      pressure[p] = -trace_sym(&P.stress[6 * p]) / 3.0;
+      mises[p] = von_mises(&P.stress[6 * p]);
+      ratio[p] = P.volume[p] / P.volume0[p];
+    }
+    for (const auto& [name, data] :
+         {std::pair{"density", &density}, std::pair{"pressure", &pressure},
+          std::pair{"von_mises_stress", &mises}, std::pair{"volume_ratio", &ratio}}) {
+      file.write_rows(name, slabs.gather(*data, 1).data(), rows, 1);
+      datasets.push_back({name, {1, false}});
+    }
+    for (const auto& f : P.int_fields()) {
+      file.write_rows(f.name, slabs.gather(*f.data).data(), rows, 1);
+      datasets.push_back({f.name, {1, true}});
+    }
+    file.close();
   }
-  // Derived fields a hydrocode user expects to plot.
-  std::vector<double> density(n), pressure(n), mises(n), ratio(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t p = order[k];
-    density[k] = P.mass[p] / P.volume[p];
-    pressure[k] = -trace_sym(&P.stress[6 * p]) / 3.0;
-    mises[k] = von_mises(&P.stress[6 * p]);
-    ratio[k] = P.volume[p] / P.volume0[p];
+  if (solver.rank() == 0) {
+    Hdf5File file(path.string(), Hdf5File::Mode::append);
+    file.write_attribute("time", solver.time());
+    file.write_attribute("step", static_cast<std::int64_t>(solver.step_count()));
+    // The dataset order, so that a resumed run can rebuild the same index.
+    std::string names;
+    for (const auto& a : datasets) names += (names.empty() ? "" : ",") + a.first;
+    file.write_attribute("fields", names);
+    file.close();
   }
-  for (const auto& [name, data] :
-       {std::pair{"density", &density}, std::pair{"pressure", &pressure},
-        std::pair{"von_mises_stress", &mises}, std::pair{"volume_ratio", &ratio}}) {
-    file.write(name, data->data(), n, 1);
-    attributes.push_back({name, {1, false}});
-  }
-  for (const auto& f : P.int_fields()) {
-    file.write(f.name, in_order(*f.data, 1, order).data(), n, 1);
-    attributes.push_back({f.name, {1, true}});
-  }
-  // The attribute order, so that a resumed run can rebuild the same index.
-  std::string names;
-  for (const auto& a : attributes) names += (names.empty() ? "" : ",") + a.first;
-  file.write_attribute("fields", names);
-  file.close();
-  return attributes;
+  return {datasets, rows.total};
 }
 
 }  // namespace
 
-void write_snapshot_file(const std::filesystem::path& path, const Solver& solver) {
-  write_datasets(path, solver);
+void write_snapshot_file(const fs::path& path, const Solver& solver,
+                         const SharedFileAccess* shared) {
+  write_datasets(path, solver, shared);
 }
 
 std::size_t snapshot_bytes_per_particle(const Particles& P) {
@@ -111,16 +114,18 @@ std::size_t snapshot_bytes_per_particle(const Particles& P) {
 }
 
 void SnapshotWriter::write(const Solver& solver) {
-  Entry entry{
-      file_name(next_index_), solver.time(), solver.step_count(), solver.particles().size(), {}};
+  Entry entry{file_name(next_index_), solver.time(), solver.step_count(), 0, {}};
   fs::create_directories(directory_ / "snapshots");
+  // The other ranks of a shared file join in (their driver's write_snapshot_file()).
+  if (shared_) solver.announce_write(static_cast<double>(next_index_));
   // Written aside and renamed once complete, as the checkpoint is: a snapshot listed by files()
   // is whole, so `hvi measure` may read a run that is still writing them.
   const fs::path path = directory_ / entry.file;
-  const fs::path tmp = path.string() + ".tmp";
-  for (const auto& [name, shape] : write_datasets(tmp, solver))
+  const auto [datasets, points] = write_datasets(temporary(path), solver, shared_);
+  for (const auto& [name, shape] : datasets)
     entry.attributes.push_back({name, shape.first, shape.second});
-  fs::rename(tmp, path);
+  entry.particles = points;
+  fs::rename(temporary(path), path);
   entries_.push_back(std::move(entry));
   ++next_index_;
   // The index first lists only what stays, then the files go (ParaView never sees a missing one).

@@ -8,12 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "mpm/io/hdf5_file.hpp"
 #include "mpm/solver.hpp"
 
 namespace hvi::mpm::io {
 
-// Writes one snapshot file (the datasets of a SnapshotWriter snapshot, no index).
-void write_snapshot_file(const std::filesystem::path& path, const Solver& solver);
+// Writes one snapshot file (the datasets of a SnapshotWriter snapshot, no index). With `shared`,
+// every rank of a run spread over ranks calls it at once and writes the rows of its slab of ids
+// (id_slabs.hpp); without, the solver's points are all on this rank.
+void write_snapshot_file(const std::filesystem::path& path, const Solver& solver,
+                         const SharedFileAccess* shared = nullptr);
 
 // The bytes per particle of the datasets a snapshot holds (position, the output fields, the
 // derived ones and the integer fields, 8 bytes a value); a file adds a few kB of HDF5 metadata.
@@ -21,10 +25,16 @@ std::size_t snapshot_bytes_per_particle(const Particles& particles);
 
 class SnapshotWriter {
  public:
-  explicit SnapshotWriter(std::filesystem::path run_directory);
+  // With `shared`, on rank 0 of a run spread over ranks: each write tells the others to write
+  // their rows (Solver::announce_write with the snapshot's index; they call
+  // write_snapshot_file(temporary(directory / file_name(index)), solver, shared)).
+  explicit SnapshotWriter(std::filesystem::path run_directory,
+                          const SharedFileAccess* shared = nullptr);
 
   // Writes the solver's current state as the next snapshot and updates the index.
   void write(const Solver& solver);
+  // Where a snapshot file is written until it is complete.
+  static std::filesystem::path temporary(const std::filesystem::path& file);
   std::size_t count() const { return entries_.size(); }
   // Keep the first snapshot (the state at t = 0, which hvi measure reads) and the newest `newest`
   // others: each write then deletes the oldest of the rest (0, the default: keep all).
@@ -59,6 +69,7 @@ class SnapshotWriter {
   std::vector<Entry> entries_;
   std::size_t next_index_ = 0;  // of the next snapshot file
   std::size_t keep_newest_ = 0;
+  const SharedFileAccess* shared_;
 };
 
 }  // namespace hvi::mpm::io

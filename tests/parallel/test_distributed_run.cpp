@@ -1,18 +1,26 @@
 // One run spread over the ranks of an MPI job (mpm/solver_ranks.cpp) against the same run on one
 // rank: every field of every point, the solver state, the removal events and the energies,
-// bitwise. Run under mpirun on 2 and 3 ranks (tests/parallel/CMakeLists.txt); started plainly it
-// is one rank and checks that the one-rank path is the plain solver's.
+// bitwise; and its snapshot and checkpoint, written by every rank into one file. Run under mpirun
+// on 2 and 3 ranks (tests/parallel/CMakeLists.txt); started plainly it is one rank and checks that
+// the one-rank path is the plain solver's.
 //
 // The scene: an Al6061 sphere at 2 km/s into an Al6061 plate (Johnson-Cook strength and damage,
 // Mie-Grueneisen), and a cube at 3 km/s that crosses the ranks' pieces of the grid and leaves the
 // domain during the run, on a 48 x 16 x 16 grid of 1 mm cells cut into 7 x 3 x 3 block groups.
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "../mpm/mpm_test_helpers.hpp"
 #include "cases/parallel/mpi_communicator.hpp"
+#include "cases/parallel/mpi_file_access.hpp"
 #include "cases/parallel/ranks.hpp"
+#include "mpm/io/checkpoint.hpp"
+#include "mpm/io/snapshot_writer.hpp"
 #include "mpm/materials/hydro_material.hpp"
 #include "mpm/materials/library.hpp"
 
@@ -51,8 +59,9 @@ struct Outcome {
   std::size_t most_points = 0;  // on this rank, at any step
 };
 
-// With `comm`, the bodies start on rank 0 only and the first step spreads them.
-Outcome run(SolverSettings settings, Communicator* comm) {
+// With `comm`, the bodies start on rank 0 only and the first step spreads them; `gather` brings
+// them back to rank 0 at the end.
+Outcome run(SolverSettings settings, Communicator* comm, bool gather = true) {
   Outcome o{impact_solver(settings), {}, {}, 0};
   if (!comm || comm->rank() == 0) add_impact_bodies(*o.solver);
   o.solver->distribute(comm);
@@ -63,7 +72,7 @@ Outcome run(SolverSettings settings, Communicator* comm) {
     for (auto& e : o.solver->take_removal_events()) o.events.push_back(e);
   }
   o.energy = o.solver->energy();
-  o.solver->gather_to_root();
+  if (gather) o.solver->gather_to_root();
   return o;
 }
 
@@ -112,6 +121,50 @@ TEST_P(DistributedRun, IsBitwiseTheOneRankRun) {
   EXPECT_GE(s.cuts, 1);
   EXPECT_GT(s.shared_blocks, 0);
   EXPECT_GT(comm->max(static_cast<double>(s.migrated)), 0.0);
+}
+
+std::string bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The collective snapshot and checkpoint: every rank writes the rows of its slab of ids
+// (mpm/io/id_slabs.hpp) into one file, which holds the one-rank run's bytes, and a checkpoint
+// written so is read back in shares, one per rank, to the same points.
+TEST(DistributedOutput, OneFileWrittenTogetherHoldsTheOneRankRunsBytes) {
+  SolverSettings settings;
+  settings.shape = ShapeFunction::gimp;
+  const Outcome one = run(settings, nullptr);
+  const auto comm = parallel::make_communicator(*ranks);
+  const auto shared = parallel::make_file_access(*ranks);
+  if (comm && !shared) GTEST_SKIP() << "hvi is built with an HDF5 that cannot share a file";
+  const Outcome spread = run(settings, comm.get(), false);
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto file = [&](const char* name) {
+    return dir / fmt::format("hvi_{}_{}.h5", name, ranks->size());
+  };
+  const auto alone = file("snapshot_alone"), together = file("snapshot"),
+             checkpoint = file("checkpoint");
+  if (ranks->rank() == 0) io::write_snapshot_file(alone, *one.solver);
+  io::write_snapshot_file(together, *spread.solver, shared.get());
+  io::write_checkpoint(checkpoint, *spread.solver, {{"answer", 42.0}}, shared.get());
+  if (comm) comm->max(0.0);  // a barrier: rank 0 has completed the checkpoint (its attributes)
+  if (ranks->rank() == 0) {
+    EXPECT_EQ(bytes(alone), bytes(together));
+    EXPECT_GT(bytes(alone).size(), 100000u);
+  }
+  // Every rank reads its share; gathered, they are the one-rank run's points.
+  const Outcome fresh{impact_solver(settings), {}, {}, 0};
+  fresh.solver->distribute(comm.get());
+  EXPECT_EQ(io::read_checkpoint(checkpoint, *fresh.solver).at("answer"), 42.0);
+  const std::size_t all = one.solver->particles().size();
+  EXPECT_LE(fresh.solver->particles().size(), all / ranks->size() + 1);
+  EXPECT_EQ(fresh.solver->point_count(), all);
+  EXPECT_TRUE(identical_state(*one.solver, *fresh.solver));
+  fresh.solver->gather_to_root();
+  if (ranks->rank() == 0) {
+    EXPECT_TRUE(identical_by_id(one.solver->particles(), fresh.solver->particles()));
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
