@@ -73,67 +73,72 @@ namespace {
 
 // The points of body b (n from `first`) that lie inside the solid of a later body: bodies that
 // overlap at the start hold the overlap twice, and its mass counts twice.
-void find_overlaps(const scene::Scene& scene, const mpm::Particles& P, std::size_t first,
-                   std::size_t n, std::size_t b,
-                   const std::vector<std::unique_ptr<geometry::Solid>>& solids,
+void find_overlaps(const scene::Scene& scene, const geometry::PointSet& points, double density,
+                   std::size_t b, const std::vector<std::unique_ptr<geometry::Solid>>& solids,
                    std::vector<std::string>& warnings) {
   for (std::size_t c = b + 1; c < solids.size(); ++c) {
     const geometry::Bounds box = solids[c]->bounds();
     std::size_t inside = 0;
-    double volume = 0, mass = 0;
-    for (std::size_t p = first; p < first + n; ++p) {
-      const geometry::Point x{P.position[3 * p], P.position[3 * p + 1], P.position[3 * p + 2]};
+    double volume = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const geometry::Point x{points.position[3 * k], points.position[3 * k + 1],
+                              points.position[3 * k + 2]};
       if (!box.contains(x) || !solids[c]->contains(x)) continue;
       ++inside;
-      volume += P.volume[p];
-      mass += P.mass[p];
+      volume += points.volume[k];
     }
     if (inside > 0)
       warnings.push_back(fmt::format(
           "bodies '{}' and '{}' overlap at the start: {} points of '{}' ({:.3g} m^3, {:.3g} kg) "
           "lie inside '{}', which has points of its own there; the overlap's mass counts twice",
-          scene.bodies[b].name, scene.bodies[c].name, inside, scene.bodies[b].name, volume, mass,
-          scene.bodies[c].name));
+          scene.bodies[b].name, scene.bodies[c].name, inside, scene.bodies[b].name, volume,
+          density * volume, scene.bodies[c].name));
   }
 }
 
 }  // namespace
 
 std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver,
-                                    double max_memory, std::vector<std::string>* warnings) {
+                                    double max_memory, std::vector<std::string>* warnings,
+                                    PointShare share) {
   mpm::Particles& P = solver.particles();
   std::vector<std::unique_ptr<geometry::Solid>> solids;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) solids.push_back(make_body_solid(scene, b));
-  check_memory(scene, solids, max_memory);  // before any point is sampled
+  check_memory(scene, solids, max_memory, share.ranks);  // before any point is sampled
   std::vector<std::size_t> counts;
+  auto id = static_cast<std::int64_t>(P.size());  // of the next point sampled, on any rank
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = scene.bodies[b];
     const double density = solver.materials()[body.material]->reference_density();
     const geometry::PointSet points = sample_body(scene, b, *solids[b]);
-    const std::size_t first = P.size(), n = points.size();
-    P.resize(first + n);
+    const std::size_t n = points.size();
+    if (warnings) find_overlaps(scene, points, density, b, solids, *warnings);
+    std::vector<std::size_t> kept;  // this rank's share: ids r, r + R, r + 2R, ...
+    for (std::size_t k = 0; k < n; ++k)
+      if ((id + static_cast<std::int64_t>(k)) % share.ranks == share.rank) kept.push_back(k);
+    const std::size_t first = P.size();
+    P.resize(first + kept.size());
     // GIMP particle domains: half the sampling spacing per axis (a thin-wall point is wide along
     // its wall and short across it, which V^(1/3) / 2 would not say).
-    if (mpm::is_gimp(solver.settings().shape) && points.half_width.size() == 3 * n) {
-      auto& hw =
-          P.add_field(mpm::Solver::half_width_field, mpm::FieldKind::vector, "m", 0.0, false);
-      std::copy(points.half_width.begin(), points.half_width.end(),
-                hw.begin() + 3 * static_cast<std::ptrdiff_t>(first));
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t p = first + k;
+    std::vector<double>* half_width = nullptr;
+    if (mpm::is_gimp(solver.settings().shape) && points.half_width.size() == 3 * n)
+      half_width =
+          &P.add_field(mpm::Solver::half_width_field, mpm::FieldKind::vector, "m", 0.0, false);
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      const std::size_t p = first + i, k = kept[i];
       for (int d = 0; d < 3; ++d) {
         P.position[3 * p + d] = points.position[3 * k + d];
         P.velocity[3 * p + d] = body.velocity[d];
+        if (half_width) (*half_width)[3 * p + d] = points.half_width[3 * k + d];
       }
       P.volume0[p] = P.volume[p] = points.volume[k];
       P.mass[p] = density * points.volume[k];
-      P.id[p] = static_cast<std::int64_t>(p);
+      P.id[p] = id + static_cast<std::int64_t>(k);
       P.body[p] = static_cast<std::int64_t>(b);
       P.material[p] = static_cast<std::int64_t>(body.material);
     }
+    id += static_cast<std::int64_t>(n);
     counts.push_back(n);
-    if (warnings) find_overlaps(scene, P, first, n, b, solids, *warnings);
     solids[b].reset();
   }
   return counts;

@@ -22,8 +22,15 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene);
 // (0: the memory the machine has available) before sampling any (memory_estimate.hpp).
 // Bodies that overlap at the start (a point of one inside another's solid: the overlap holds
 // points of both, and its mass counts twice) are named in `warnings`, when given.
+// With a share of a run spread over ranks, every rank samples every body and keeps the points
+// whose id is rank modulo ranks (the first step sends each to its owner), and the memory check
+// is of its share; the ids and the counts are those of one rank.
+struct PointShare {
+  int rank = 0, ranks = 1;
+};
 std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solver,
                                     double max_memory = 0,
-                                    std::vector<std::string>* warnings = nullptr);
+                                    std::vector<std::string>* warnings = nullptr,
+                                    PointShare share = {});
 
 }  // namespace hvi::driver

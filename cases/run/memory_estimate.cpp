@@ -110,7 +110,8 @@ MemoryLimit available_memory() {
 }
 
 void check_memory(const scene::Scene& scene,
-                  const std::vector<std::unique_ptr<geometry::Solid>>& solids, double limit) {
+                  const std::vector<std::unique_ptr<geometry::Solid>>& solids, double limit,
+                  int ranks) {
   const bool machine = limit <= 0;
   const MemoryLimit available = machine ? available_memory() : MemoryLimit{limit, "--max-memory"};
   limit = available.bytes;
@@ -122,16 +123,17 @@ void check_memory(const scene::Scene& scene,
     points += n;
     if (n > largest) largest = n, which = b;
   }
-  const double bytes = points * bytes_per_point;
+  const double bytes = points * bytes_per_point / ranks;  // a rank's share
   if (bytes <= limit) return;
   const scene::BodySettings& body = scene.bodies[which];
   throw std::invalid_argument(fmt::format(
-      "the bodies would hold about {:.3g} points, about {} at {:.0f} bytes a point, above {} ({}); "
+      "the bodies would hold about {:.3g} points, about {}{} at {:.0f} bytes a point, above {} "
+      "({}); "
       "the largest is '{}' with {:.3g} points at a spacing of grid.cell_size {:.3g} m over "
       "particles_per_cell {}{}: raise the cell size or lower the particles per cell",
-      points, bytes_text(bytes), bytes_per_point, bytes_text(limit), available.what, body.name,
-      largest, scene.grid.cell_size, body.particles_per_cell,
-      scene.refinements.empty() ? "" : " and the [[refinement]] factors"));
+      points, bytes_text(bytes), ranks > 1 ? fmt::format(" on each of {} ranks", ranks) : "",
+      bytes_per_point, bytes_text(limit), available.what, body.name, largest, scene.grid.cell_size,
+      body.particles_per_cell, scene.refinements.empty() ? "" : " and the [[refinement]] factors"));
 }
 
 }  // namespace hvi::driver

@@ -33,7 +33,9 @@ MemoryLimit available_memory();
 
 // Throws std::invalid_argument if the bodies' points would need more than `limit` bytes (0: the
 // memory available), naming the estimate, the largest body and the keys that set its spacing.
+// A run spread over `ranks` holds against it one rank's share of the points.
 void check_memory(const scene::Scene& scene,
-                  const std::vector<std::unique_ptr<geometry::Solid>>& solids, double limit);
+                  const std::vector<std::unique_ptr<geometry::Solid>>& solids, double limit,
+                  int ranks = 1);
 
 }  // namespace hvi::driver

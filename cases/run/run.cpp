@@ -171,7 +171,8 @@ int SceneRun::build() {
       extras_ = mpm::io::read_checkpoint(dir_ / "checkpoint.h5", *solver_);
       check_same_state();
     } else {
-      counts_ = add_bodies(scene_, *solver_, options_.max_memory, &overlaps_);
+      const PointShare share{0, options_.ranks ? options_.ranks->size() : 1};
+      counts_ = add_bodies(scene_, *solver_, options_.max_memory, &overlaps_, share);
       solver_->initialise();
       if (hybrid_) hybrid_->record_reference_positions(*solver_);
     }
@@ -713,9 +714,9 @@ void SceneRun::measure_final_holes(toml::table& summary, std::map<std::string, d
 
 namespace {
 
-// A rank but the first of a run spread over ranks: builds the same solver, without points, and
-// steps with rank 0 until it says stop. Signals are rank 0's to act on (it checkpoints and stops
-// the others); a solver error here ends the job.
+// A rank but the first of a run spread over ranks: builds the same solver with its share of the
+// points, and steps with rank 0 until it says stop. Signals are rank 0's to act on (it checkpoints
+// and stops the others); a solver error here ends the job.
 int follow_scene(const scene::Scene& scene, const RunOptions& options) {
   std::signal(SIGINT, SIG_IGN);
   std::signal(SIGTERM, SIG_IGN);
@@ -724,6 +725,11 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
   try {
     solver = make_solver(scene);
     solver->distribute(options.ranks);
+    // Its share of the points (rank 0 samples its own alike); a resumed run reads its share of
+    // the checkpoint instead, when rank 0 restores it.
+    if (!options.resume)
+      add_bodies(scene, *solver, options.max_memory, nullptr,
+                 {options.ranks->rank(), options.ranks->size()});
   } catch (const std::exception&) {  // rank 0 refuses the same scene and says why
     solver.reset();
   }
