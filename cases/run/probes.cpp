@@ -24,6 +24,11 @@ bool in_zone(const std::array<double, 3>& x, const scene::Scene& s) {
 
 }  // namespace
 
+bool has_probes(const scene::Scene& scene) {
+  return std::any_of(scene.measures.begin(), scene.measures.end(),
+                     [](const auto& m) { return m.kind == "displacement"; });
+}
+
 Probes::Probes(const scene::Scene& scene, const mpm::Solver& solver, const Hybrid* hybrid)
     : hybrid_(hybrid), cell_(scene.grid.cell_size) {
   for (const auto& m : scene.measures) {

@@ -31,6 +31,9 @@
 
 namespace hvi::driver {
 
+// Whether the scene has a displacement probe.
+bool has_probes(const scene::Scene& scene);
+
 class Probes {
  public:
   // Chooses what each probe reads (call before the first step). `hybrid` may be null.

@@ -176,6 +176,9 @@ int SceneRun::build() {
       solver_->initialise();
       if (hybrid_) hybrid_->record_reference_positions(*solver_);
     }
+    // Probes choose their points among all of them: a spread run's are gathered on rank 0 (and
+    // again before each energy row; the next step spreads them).
+    if (has_probes(scene_)) solver_->gather_to_root();
     probes_ = std::make_unique<Probes>(scene_, *solver_, hybrid_.get());
     if (options_.resume) probes_->load(extras_);
   } catch (const std::exception& e) {

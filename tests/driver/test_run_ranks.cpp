@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -51,6 +52,28 @@ TEST(RunOnRanks, WritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
   EXPECT_NE(read(log).find("ranks: 2;"), std::string::npos) << read(log);
   expect_same_output(one, spread, 4);
   EXPECT_EQ(summary_number(spread, "ranks"), 2.0);
+}
+
+// A displacement probe chooses its points among all of them and reads them at every energy row
+// (rank 0 gathers them): probes.csv and every output file are the one-rank run's bytes.
+TEST(RunOnRanks, ProbesReadTheOneRankRunsPoints) {
+  if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const fs::path scene = scratch("ranks_probe.toml");
+  // On the front sheet where the sphere strikes it: its points move apart from the first steps.
+  std::ofstream(scene) << read(demo)
+                       << "\n[[measure]]\nname = \"front_deflection\"\nkind = \"displacement\"\n"
+                          "point = [\"0.5 mm\", \"0.5 mm\", \"-0.25 mm\"]\nbody = \"panel.front\"\n"
+                          "axis = \"z\"\n";
+  const fs::path one = scratch("ranks_probe_one"), spread = scratch("ranks_probe_spread");
+  const fs::path log = scratch("ranks_probe_log.txt");
+  const std::string args =
+      " --threads 1 --set 'run.end_time=0.3 us' --set 'output.interval=0.1 us'";
+  ASSERT_EQ(run("run " + scene.string() + " --out " + one.string() + args), 0);
+  ASSERT_EQ(on_ranks(2, "run " + scene.string() + " --out " + spread.string() + args, log), 0)
+      << read(log);
+  expect_same_output(one, spread, 4);
+  EXPECT_FALSE(read(one / "probes.csv").empty());
+  EXPECT_EQ(read(one / "probes.csv"), read(spread / "probes.csv"));
 }
 
 TEST(RunOnRanks, RefusesWhatASpreadRunCannotDoYet) {
