@@ -215,8 +215,7 @@ void Solver::step(double max_dt) {
   move_particles();
   state_.time += dt_;
   state_.step += 1;
-  remove_escaped_particles();
-  count_points();
+  remove_escaped_particles();  // books every rank's removals in point_count() too
   choose_time_step();
 }
 

@@ -227,20 +227,6 @@ std::pair<std::size_t, std::size_t> Hdf5File::shape(const std::string& name) con
 
 namespace {
 template <class T>
-std::vector<T> read_all(hid_t file, const std::string& path, const std::string& name, hid_t type,
-                        std::size_t count) {
-  Handle set{check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path),
-             H5Dclose};
-  std::vector<T> data(count);
-  if (count > 0)
-    check_status(H5Dread(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-                 "read dataset '" + name + "'", path);
-  return data;
-}
-}  // namespace
-
-namespace {
-template <class T>
 std::vector<T> read_some(hid_t file, const std::string& path, const std::string& name, hid_t type,
                          std::size_t first, std::size_t count, std::size_t columns) {
   Handle set{check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open dataset '" + name + "'", path),
@@ -251,7 +237,7 @@ std::vector<T> read_some(hid_t file, const std::string& path, const std::string&
   select_rows(space.id, first, count, columns);
   Handle memory{memory_space(count, columns), H5Sclose};
   check_status(H5Dread(set.id, type, memory.id, space.id, H5P_DEFAULT, data.data()),
-               "read rows of dataset '" + name + "'", path);
+               "read dataset '" + name + "'", path);
   return data;
 }
 }  // namespace
@@ -268,13 +254,11 @@ std::vector<std::int64_t> Hdf5File::read_integers(const std::string& name, std::
 }
 
 std::vector<double> Hdf5File::read_doubles(const std::string& name) const {
-  const auto [r, c] = shape(name);
-  return read_all<double>(file_, path_, name, H5T_NATIVE_DOUBLE, r * c);
+  return read_doubles(name, 0, shape(name).first);
 }
 
 std::vector<std::int64_t> Hdf5File::read_integers(const std::string& name) const {
-  const auto [r, c] = shape(name);
-  return read_all<std::int64_t>(file_, path_, name, H5T_NATIVE_INT64, r * c);
+  return read_integers(name, 0, shape(name).first);
 }
 
 bool Hdf5File::has_attribute(const std::string& name) const {
