@@ -49,10 +49,12 @@ def csv_rows(path):
 def load_runs(out):
     """One dict per run: the sweep.csv row, or a single run directory's measurements."""
     sweep = out / "sweep.csv"
+    if (out / "ballistic_limit.csv").exists():  # hvi ballistic-limit: its trials
+        sweep = out / "trials" / "sweep.csv"
     if sweep.exists():
         rows = csv_rows(sweep)
         for r in rows:
-            r["dir"] = out / r["run"]
+            r["dir"] = sweep.parent / r["run"]
         return rows
     if (out / "measurements.csv").exists():  # a single run
         row = csv_rows(out / "measurements.csv")[0]
@@ -452,6 +454,38 @@ def history_section(runs, figures):
     return "\n".join(lines)
 
 
+def markdown_table(rows, columns):
+    """A Markdown table of `columns` (CSV column, heading) from CSV rows."""
+    lines = ["| " + " | ".join(h for _, h in columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(r.get(c, "") for c, _ in columns) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def limit_sections(out):
+    """hvi ballistic-limit's curve and hvi validate's shots, when the directory holds them."""
+    md = []
+    if (out / "ballistic_limit.csv").exists():
+        rows = csv_rows(out / "ballistic_limit.csv")
+        md += ["## Ballistic limit (hvi ballistic-limit)", "",
+               markdown_table(rows, [("speed_km_s", "v (km/s)"), ("critical_diameter_mm", "d_c (mm)"),
+                                     ("stopped_mm", "largest NP (mm)"), ("perforated_mm", "smallest P (mm)"),
+                                     ("trials", "trials"), ("wall_seconds", "wall (s)"), ("status", "status"),
+                                     ("srl_critical_diameter_mm", "SRL d_c (mm)")]), ""]
+        if (out / "ballistic_limit.png").exists():
+            md += ["![ballistic limit](ballistic_limit.png)", ""]
+    if (out / "validate.csv").exists():
+        rows = csv_rows(out / "validate.csv")
+        right = sum(r["right"] == "1" for r in rows)
+        run = sum(r["right"] != "" for r in rows)
+        srl = sum(r["srl"] == r["observed"] for r in rows)
+        md += ["## Against the experiments (hvi validate)", "",
+               f"hvi: {right} of {run} outcomes right; SRL equation: {srl} of {len(rows)}.", "",
+               markdown_table(rows, [("run", "shot"), ("d_p_mm", "d_p (mm)"), ("v_km_s", "v (km/s)"),
+                                     ("observed", "experiment"), ("srl", "SRL"), ("hvi", "hvi"),
+                                     ("hvi_D_r_mm", "hvi D_r (mm)")]), ""]
+    return md
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dir", type=pathlib.Path)
@@ -465,7 +499,8 @@ def main():
     runs = load_runs(out)
     figures = out / "report"
     figures.mkdir(exist_ok=True)
-    md = [f"# hvi report: {out}", "", f"{len(runs)} runs.", "", "## Runs", "", runs_table(runs), ""]
+    md = [f"# hvi report: {out}", "", f"{len(runs)} runs.", ""] + limit_sections(out)
+    md += ["## Runs", "", runs_table(runs), ""]
     t2 = table2(runs, args.reference)
     if t2:
         md += ["## Against Table 2 (Turner's experiments, the paper's MPM)", "", t2, ""]

@@ -16,6 +16,11 @@
 //   hvi compare RUN_A RUN_B                        two runs' measures and costs side by side
 //   hvi sweep STUDY --out DIR [--threads N] [--set key=value]... [--only RUN]...
 //                                                  a grid of runs, resumable; DIR/sweep.csv
+//   hvi validate DATABASE --out DIR [--only SHOT]...
+//                                                  run an experiment database's shots; outcomes
+//                                                  beside the SRL equation's and the experiments'
+//   hvi ballistic-limit SCENE --speeds 2,4,6km/s --out DIR
+//                                                  the critical diameter at each speed by trials
 //   mpirun -np N hvi run SCENE --out DIR           one run spread over N ranks
 //   mpirun -np N hvi sweep ...                     the runs handed out among N ranks
 #include <omp.h>
@@ -35,6 +40,7 @@
 #include "cases/cli/compare_command.hpp"
 #include "cases/cli/convergence_command.hpp"
 #include "cases/cli/geometry_command.hpp"
+#include "cases/cli/limit_cli.hpp"
 #include "cases/cli/probe_command.hpp"
 #include "cases/cli/sweep_command.hpp"
 #include "cases/parallel/mpi_communicator.hpp"
@@ -173,6 +179,8 @@ struct Commands {
   std::unique_ptr<hvi::driver::FitCli> fit;
   std::unique_ptr<hvi::driver::ProbeCli> probe;
   std::unique_ptr<hvi::driver::UnitsCli> units;
+  std::unique_ptr<hvi::driver::ValidateCli> validate;
+  std::unique_ptr<hvi::driver::BallisticLimitCli> ballistic_limit;
 };
 
 // check, run, geometry, keys: the commands of one scene.
@@ -253,6 +261,8 @@ void add_study_commands(CLI::App& app, Commands& c) {
                           "Override a scene key in every run: key.path=value (repeatable)");
   c.sweep_cmd->add_option("--only", sweep.only, "Run only these runs (names)");
   c.sweep_cmd->add_flag("--list", sweep.list, "Print the runs with their overrides and exit");
+  c.validate = hvi::driver::add_validate_command(app);
+  c.ballistic_limit = hvi::driver::add_ballistic_limit_command(app);
 }
 
 // report, compare, measure, fit: the commands that read what runs wrote.
@@ -308,11 +318,12 @@ int run(Commands& c, const std::string& command_line, const hvi::parallel::Ranks
 // Under an MPI launcher, the commands but hvi run and hvi sweep run on one rank: say so before
 // doing anything.
 bool refuse_ranks(const Commands& c, const hvi::parallel::Ranks& ranks) {
-  if (ranks.size() == 1 || *c.sweep_cmd || *c.run) return false;
+  if (ranks.size() == 1 || *c.sweep_cmd || *c.run || *c.validate->command) return false;
   if (ranks.root())
     fmt::print(stderr,
                "hvi: started as {} ranks of an MPI job; only `hvi run` (one run spread over the "
-               "ranks) and `hvi sweep` (one run per rank at a time) share their work among ranks. "
+               "ranks), `hvi sweep` and `hvi validate` (one run per rank at a time) share their "
+               "work among ranks. "
                "Start this command without mpirun, or with -np 1\n",
                ranks.size());
   return true;
@@ -335,9 +346,18 @@ int dispatch(Commands& c, const std::string& command_line, const hvi::parallel::
   }
   if (*c.report) return report(c.report_dir, c.report_no_run_figures);
   if (*c.compare_cmd) return hvi::driver::compare_command(c.compare);
+  const std::string self = std::filesystem::canonical("/proc/self/exe").string();
   if (*c.sweep_cmd) {
-    c.sweep.hvi = std::filesystem::canonical("/proc/self/exe").string();
+    c.sweep.hvi = self;
     return hvi::driver::run_sweep(c.sweep, ranks);
+  }
+  if (*c.validate->command) {
+    c.validate->options.hvi = self;
+    return hvi::driver::run_validate(c.validate->options, ranks);
+  }
+  if (*c.ballistic_limit->command) {
+    c.ballistic_limit->options.hvi = self;
+    return hvi::driver::run_ballistic_limit(c.ballistic_limit->options, ranks);
   }
   if (*c.geometry) {
     if (c.threads > 0) omp_set_num_threads(c.threads);

@@ -483,17 +483,20 @@ parallel::TaskResult sweep_run(const SweepOptions& o, const Study& study, std::s
 }  // namespace
 
 int run_sweep(const SweepOptions& options, const parallel::Ranks& ranks) {
+  return run_study(load_study(options.study, options.overrides), options, ranks);
+}
+
+int run_study(const Study& whole, const SweepOptions& options, const parallel::Ranks& ranks) {
   SweepOptions o = options;
   o.rank = ranks.rank();
   o.ranks = ranks.size();
-  Study study = load_study(o.study, o.overrides);
-  const Study whole = study;  // sweep.csv keeps the rows of runs made by earlier `--only`s
+  Study study = whole;  // sweep.csv keeps the rows of runs made by earlier `--only`s
   auto selected_runs = select_runs(study, o);
   if (!selected_runs) return input_error;
   study.runs = std::move(*selected_runs);
   std::map<std::string, Existing> existing;
   if (const int code = check_runs(study, o, existing); code != success) return code;
-  if (ranks.root())
+  if (ranks.root() && !o.quiet_start)
     fmt::print("hvi sweep: {}{} — {} runs of {}{}\n", o.study,
                study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(), study.scene,
                ranks.size() > 1 ? fmt::format(", handed out to {} ranks", ranks.size()) : "");
@@ -531,6 +534,7 @@ int run_sweep(const SweepOptions& options, const parallel::Ranks& ranks) {
                *interrupted);
     return code;
   }
+  if (o.quiet_end) return code;
   fmt::print("hvi sweep: {} (one row per run); hvi fit {} --form front|rear|taper; hvi report {}\n",
              (fs::path(o.out) / "sweep.csv").string(), o.out, o.out);
   return code;

@@ -35,6 +35,8 @@ struct SweepOptions {
   bool list = false;                   // print the runs and exit
   std::string hvi;                     // this executable
   int rank = 0, ranks = 1;             // of the MPI job (set by run_sweep)
+  bool quiet_end = false;    // no closing line pointing at hvi fit and hvi report (for callers)
+  bool quiet_start = false;  // no opening line naming the study (for callers)
 };
 
 // With several ranks (mpirun -np N hvi sweep ...), rank 0 hands the runs out one at a time to the
@@ -53,5 +55,9 @@ struct Study {
 };
 // Throws scene::SceneError (file:line diagnostics) for a bad study file.
 Study load_study(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// run_sweep on a study built in memory (hvi validate, hvi ballistic-limit): options.study only
+// names it in messages; options.overrides are not applied again (they belong in the runs').
+int run_study(const Study& study, const SweepOptions& options, const parallel::Ranks& ranks);
 
 }  // namespace hvi::driver

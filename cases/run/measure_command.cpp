@@ -276,6 +276,25 @@ void measure_debris(Measurements& out, const OpenRun& run, const ParticleData& c
   out.debris_threshold = d.threshold;
 }
 
+// The rear sheet's detached spall: its intact points outside the attached clusters that lie more
+// than one spacing behind its back face at t = 0 (the debris test, restricted to the sheet).
+analysis::Debris detached_spall(const Measurements& out, const ParticleData& current,
+                                const BackFace& back, int rear,
+                                const std::vector<std::size_t>& attached) {
+  std::vector<std::uint8_t> keep(current.size(), 0);
+  for (const std::size_t k : analysis::particles_of(current.view(), rear, true)) keep[k] = 1;
+  for (const std::size_t k : attached) keep[k] = 0;
+  std::vector<std::size_t> excluded;
+  for (std::size_t k = 0; k < current.size(); ++k)
+    if (!keep[k]) excluded.push_back(k);
+  analysis::DebrisOptions d;
+  d.axis_point = {out.axis[0], out.axis[1], 0};
+  d.direction = impact_direction;
+  d.back_face = -back.z;
+  d.threshold = back.threshold;
+  return analysis::debris_cloud(current.view(), d, excluded);
+}
+
 // The dimensional-analysis variables (paper Section 6).
 void add_variables(Measurements& out, const OpenRun& run, const Facesheets& sheets) {
   const RunInfo& info = run.info;
@@ -374,6 +393,7 @@ Measurements measure_snapshot(const MeasureOptions& o, const OpenRun& run, std::
       out.front->hole.resolution > 0 && out.rear->hole.resolution > 0 && out.core_height)
     out.taper = analysis::channel_taper(out.rear->hole.D, out.front->hole.D, *out.core_height);
 
+  if (sheets.rear >= 0) out.spall = detached_spall(out, current, back, sheets.rear, rear_attached);
   if (behind >= 0) {
     measure_debris(out, run, current, back, stride,
                    sheets.rear >= 0 ? rear_attached : front_attached);

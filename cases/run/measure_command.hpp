@@ -61,6 +61,9 @@ struct Measurements {
   std::optional<double> taper, core_height;  // eq. (12); S
   std::optional<analysis::Bulge> bulge;      // rear facesheet not perforated
   analysis::Debris debris;
+  // Detached spall: intact rear-sheet material no longer attached to the sheet (clusters.hpp) and
+  // more than one spacing behind its back face; absent without a rear sheet.
+  std::optional<analysis::Debris> spall;
   std::string debris_behind;  // the sheet whose back face it is measured from
   double debris_back_face = 0, debris_threshold = 0;  // z of the back face, m; threshold, m
   // The variables of the dimensional analysis (paper Section 6), where the scene defines them.

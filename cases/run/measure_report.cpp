@@ -88,6 +88,9 @@ std::vector<std::pair<std::string, std::string>> csv_cells(const Measurements& m
   sheet(m.rear, "r");
   c.emplace_back("taper", opt(m.taper.has_value(), m.taper.value_or(0)));
   c.emplace_back("bulge", opt(m.bulge.has_value(), m.bulge ? m.bulge->displacement : 0));
+  c.emplace_back("rear_spall_mass", opt(m.spall.has_value(), m.spall ? m.spall->mass : 0));
+  c.emplace_back("rear_spall_particles",
+                 m.spall ? std::to_string(m.spall->particles) : std::string{});
   c.emplace_back("debris_mass", num(m.debris.mass));
   c.emplace_back("debris_axial_extent", num(m.debris.axial_extent));
   c.emplace_back("debris_radial_extent", num(m.debris.radial_extent));
@@ -198,6 +201,11 @@ void write_measurements(const Measurements& m, const fs::path& dir) {
                                    {"axial_extent", m.debris.axial_extent},
                                    {"radial_extent", m.debris.radial_extent},
                                    {"kinetic_energy", m.debris.kinetic_energy}});
+  if (m.spall)
+    j.insert("rear_spall", toml::table{{"mass", m.spall->mass},
+                                       {"particles", static_cast<std::int64_t>(m.spall->particles)},
+                                       {"axial_extent", m.spall->axial_extent},
+                                       {"radial_extent", m.spall->radial_extent}});
   toml::table vars;
   for (const auto& [name, value] : m.variables) vars.insert(name, value);
   j.insert("variables", vars);
@@ -304,6 +312,11 @@ void print_measurements(const Measurements& m) {
         m.debris_behind, m.debris_threshold / mm, m.debris_back_face / mm, m.debris.mass * 1e3,
         m.debris.particles, m.debris.axial_extent / mm, m.debris.radial_extent / mm,
         m.debris.kinetic_energy);
+  if (m.spall && m.spall->particles > 0)
+    fmt::print(
+        "detached spall of the rear sheet: {:.4g} mg in {} intact particles, {:.3f} mm "
+        "deep\n",
+        m.spall->mass * 1e6, m.spall->particles, m.spall->axial_extent / mm);
   for (const auto& n : m.notes) fmt::print("note: {}\n", n);
 }
 

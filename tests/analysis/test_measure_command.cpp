@@ -223,6 +223,44 @@ TEST(MeasureCommand, PanelHalfModelNotPerforatedRear) {
   EXPECT_NEAR(t.number(0, t.column("bulge")), m.bulge->displacement, 1e-12);
 }
 
+// Detached spall: a disc of the rear sheet (r < 0.6 mm) cut free by a failed ring (0.6 mm <= r <
+// 0.8 mm) and moved 1 mm behind the sheet is counted, whole and mirrored, as the rear sheet's
+// spall; the bulge of the other run has none.
+TEST(MeasureCommand, DetachedSpallIsTheRearSheetsMaterialCutFreeBehindIt) {
+  double disc_mass = 0;
+  std::size_t disc = 0;
+  const fs::path dir = make_run("spall", false, [&](Frame& f) {
+    for (std::size_t k = 0; k < f.p.size(); ++k) {
+      if (f.p.body[k] != 3) continue;
+      double* x = &f.p.position[3 * k];
+      const double r = std::hypot(x[0], x[1]);
+      if (r < 0.6 * mm) {
+        x[2] -= 1 * mm;
+        disc_mass += f.p.mass[k];
+        ++disc;
+      } else if (r < 0.8 * mm) {
+        f.p.failed[k] = 1;
+      }
+    }
+  });
+  MeasureOptions o;
+  o.run = dir;
+  const Measurements m = measure_run(o);
+  ASSERT_TRUE(m.spall.has_value());
+  ASSERT_GT(disc, 0u);
+  EXPECT_EQ(m.spall->particles, 2 * disc);  // both halves of the half model
+  EXPECT_NEAR(m.spall->mass, 2 * disc_mass, 1e-12 * disc_mass);
+  write_measurements(m, dir);
+  const analysis::Table t = analysis::read_csv(dir / "measurements.csv");
+  EXPECT_EQ(t.number(0, t.column("rear_spall_particles")), static_cast<double>(2 * disc));
+
+  MeasureOptions plain;
+  plain.run = make_run("no_spall", false);
+  const Measurements bulge = measure_run(plain);
+  ASSERT_TRUE(bulge.spall.has_value());
+  EXPECT_EQ(bulge.spall->particles, 0u);
+}
+
 // The rear hole, an ellipse of semi-axes 1.6 and 1.2 mm: perforated, measured by the six-
 // direction rule, with the taper of eq. (12) from the panel's core height.
 TEST(MeasureCommand, PanelPerforatedRearAndTaper) {

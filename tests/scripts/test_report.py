@@ -138,5 +138,23 @@ class HoleHistory(unittest.TestCase):
         self.assertIsNone(report.history_section([run("case1")], pathlib.Path("/nonexistent")))
 
 
+class LimitSections(unittest.TestCase):
+    def test_validate_counts_and_ballistic_limit_table(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = pathlib.Path(d)
+            (out / "validate.csv").write_text(
+                "run,source,shot,d_p_mm,v_km_s,observed,srl_d_c_mm,srl_regime,srl,hvi,hvi_D_r_mm,hvi_spall_mg,right\n"
+                "a,s,1,1,4.7,P,0.6,shatter,P,P,2.3,0,1\n"
+                "b,s,2,1,1.6,NP,1.2,ballistic,NP,P,1.0,0,0\n"
+                "c,s,3,1,6.7,NP,1.4,shatter,NP,,,,\n")
+            (out / "ballistic_limit.csv").write_text(
+                "speed_km_s,critical_diameter_mm,stopped_mm,perforated_mm,trials,wall_seconds,status,"
+                "srl_critical_diameter_mm,srl_regime\n3,0.457,0.434,0.48,4,2.5,converged,0.39,ballistic\n")
+            text = "\n".join(report.limit_sections(out))
+            # Two shots run, one right; the SRL equation right on all three.
+            self.assertIn("hvi: 1 of 2 outcomes right; SRL equation: 3 of 3.", text)
+            self.assertIn("| 3 | 0.457 | 0.434 | 0.48 | 4 | 2.5 | converged | 0.39 |", text)
+
+
 if __name__ == "__main__":
     unittest.main()
