@@ -497,8 +497,9 @@ int run_study(const Study& whole, const SweepOptions& options, const parallel::R
   std::map<std::string, Existing> existing;
   if (const int code = check_runs(study, o, existing); code != success) return code;
   if (ranks.root() && !o.quiet_start)
-    fmt::print("hvi sweep: {}{} — {} runs of {}{}\n", o.study,
-               study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(), study.scene,
+    fmt::print("hvi sweep: {}{} — {} run{} of {}{}\n", o.study,
+               study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(),
+               study.runs.size() == 1 ? "" : "s", study.scene,
                ranks.size() > 1 ? fmt::format(", handed out to {} ranks", ranks.size()) : "");
   if (o.list) {
     if (ranks.root())

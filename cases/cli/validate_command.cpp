@@ -1,5 +1,6 @@
 #include "cases/cli/validate_command.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -110,16 +111,18 @@ int run_validate(const ValidateOptions& options, const parallel::Ranks& ranks) {
   }
   const fs::path folder = fs::path(o.database).parent_path();
   if (o.template_scene.empty()) o.template_scene = (folder / "shot.toml").string();
-  std::vector<Shot> shots;
+  std::vector<Shot> all, shots;
   try {
-    shots = select(read_shots(o.database, read_material_names(folder / "material_names.csv")), o);
+    all = read_shots(o.database, read_material_names(folder / "material_names.csv"));
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi validate: {}\n", e.what());
     return input_error;
   }
+  shots = select(all, o);
   if (shots.empty()) return input_error;
   Study study;
-  study.title = fmt::format("{} shots of {}", shots.size(), o.database);
+  study.title =
+      fmt::format("{} shot{} of {}", shots.size(), shots.size() == 1 ? "" : "s", o.database);
   study.scene = o.template_scene;
   for (const Shot& s : shots) {
     SweepRun run{s.run_name(), {{"shot", s.id}}, shot_overrides(s)};
@@ -135,7 +138,13 @@ int run_validate(const ValidateOptions& options, const parallel::Ranks& ranks) {
   sweep.quiet_end = true;
   const int code = run_study(study, sweep, ranks);
   if (o.list || !ranks.root()) return code;
-  const int reported = report(shots, o, *criterion);
+  // The table: the shots run now and those earlier calls (other --only) ran into the same DIR.
+  std::vector<Shot> table;
+  for (const Shot& s : all)
+    if (fs::exists(fs::path(o.out) / s.run_name()) ||
+        std::any_of(shots.begin(), shots.end(), [&](auto& x) { return x.label == s.label; }))
+      table.push_back(s);
+  const int reported = report(table, o, *criterion);
   return code != success ? code : reported;
 }
 

@@ -4,7 +4,7 @@
 // study (hvi sweep: DIR/<source>_<shot>/, DIR/sweep.csv, resumable), measures each run's rear
 // facesheet, and prints, shot by shot, the experiment's outcome and hole beside the Schaefer-Ryan-
 // Lambert ballistic limit equation's prediction and hvi's, then the two confusion tables.
-// Writes DIR/validate.csv (one row per shot).
+// Writes DIR/validate.csv (one row per shot: those run now and those earlier calls ran into DIR).
 //   hvi validate cases/experiments/hcsp_shots.csv --out runs/validate
 //   hvi validate cases/experiments/hcsp_shots.csv --out runs/validate --only 1-008 --only B002
 #include <string>
