@@ -76,13 +76,14 @@ int report(const std::vector<Shot>& shots, const ValidateOptions& o, Criterion c
       const bool p = outcome->perforated(criterion);
       hvi.add(s.perforated, p);
       said = outcome->text(criterion) + (p == s.perforated ? "" : " x");
-      if (outcome->hole) D_r = fmt::format("{:.2f}", outcome->D_r / mm);
+      if (outcome->hole) D_r = fmt::format("{:.6g}", outcome->D_r / mm);
     } else {
       ++unmeasured;
     }
     fmt::print("{:<34} {:>5.2f} {:>5.2f} {:>4} {:>9.3f} {:>4} {:>22} {:>7}\n", s.run_name(),
                s.d_p / mm, s.v_p / 1e3, s.perforated ? "P" : "NP", d.diameter / mm,
-               srl_p ? "P" : "NP", said, D_r);
+               srl_p ? "P" : "NP", said,
+               outcome && outcome->hole ? fmt::format("{:.2f}", outcome->D_r / mm) : "");
     csv << fmt::format("{},{},{},{:g},{:g},{},{:.6g},{},{},{},{},{},{}\n", s.run_name(), s.source,
                        s.id, s.d_p / mm, s.v_p / 1e3, s.perforated ? "P" : "NP", d.diameter / mm,
                        analysis::to_string(d.regime), srl_p ? "P" : "NP",
