@@ -14,11 +14,11 @@
 #include "cases/cli/child_run.hpp"
 #include "cases/cli/experiments.hpp"
 #include "cases/cli/limit_search.hpp"
+#include "cases/cli/option_value.hpp"
 #include "cases/cli/rear_outcome.hpp"
 #include "cases/cli/sweep_command.hpp"
 #include "cases/run/run.hpp"
 #include "cases/scene/scene.hpp"
-#include "cases/scene/units.hpp"
 
 namespace hvi::driver {
 
@@ -28,21 +28,15 @@ namespace {
 
 constexpr double mm = 1e-3, km_s = 1e3;
 
-// A value with a unit of `dim` (a bare number is SI); throws naming the option.
-double quantity(const std::string& option, const std::string& text, scene::Dim dim,
+// A positive value with a unit of dimension `dim` (a bare number is SI, or in `fallback_unit`).
+double quantity(const std::string& option, const std::string& text, const std::string& dim,
                 const std::string& fallback_unit = "") {
-  scene::Quantity q;
-  try {
-    q = scene::parse_quantity(text);
-    if (q.bare && !fallback_unit.empty()) q = scene::parse_quantity(text + " " + fallback_unit);
-  } catch (const scene::UnitError& e) {
-    throw std::invalid_argument(fmt::format("{} {}: {}", option, text, e.what()));
-  }
-  if (!(q.dim == dim || q.bare) || !(q.si > 0))
-    throw std::invalid_argument(fmt::format("{} {}: expected a positive {}, such as {}", option,
-                                            text, scene::dimension_name(dim),
-                                            scene::example_value(dim)));
-  return q.si;
+  const bool bare = text.find_first_not_of("0123456789.eE+- ") == std::string::npos;
+  const std::string written = bare && !fallback_unit.empty() ? text + " " + fallback_unit : text;
+  const double v = si_value(written, dim, option + " ");
+  if (!(v > 0))
+    throw std::invalid_argument(fmt::format("{} '{}': expected a positive {}", option, text, dim));
+  return v;
 }
 
 // What a trial changes, and the panel the SRL equation sees.
@@ -81,7 +75,7 @@ Setup read_setup(const BallisticLimitOptions& o) {
   };
   const auto& rear = material_of(p.name + ".rear");
   double yield = rear.models.johnson_cook ? rear.models.johnson_cook->A : 0;
-  if (!o.rear_yield.empty()) yield = quantity("--rear-yield", o.rear_yield, scene::dims::pressure);
+  if (!o.rear_yield.empty()) yield = quantity("--rear-yield", o.rear_yield, "pressure");
   if (!(yield > 0))
     throw std::invalid_argument(
         "the rear sheet's material has no Johnson-Cook A: give --rear-yield for the SRL equation");
@@ -149,8 +143,7 @@ std::vector<double> parse_speeds(const std::string& text) {
     throw std::invalid_argument(
         fmt::format("--speeds {}: give the speeds a unit, such as 2,3,4.5km/s", text));
   std::vector<double> speeds;
-  for (const auto& p : parts)
-    speeds.push_back(quantity("--speeds", p, scene::dims::velocity, unit));
+  for (const auto& p : parts) speeds.push_back(quantity("--speeds", p, "velocity", unit));
   return speeds;
 }
 
@@ -322,7 +315,7 @@ int run_ballistic_limit(const BallisticLimitOptions& o, const parallel::Ranks& r
       throw std::invalid_argument(
           "--vary velocity: give --diameter and --speeds LOW,HIGH (the first trial at their "
           "geometric mean)");
-    const double d = quantity("--diameter", o.diameter, scene::dims::length);
+    const double d = quantity("--diameter", o.diameter, "length");
     searches.push_back({d,
                         LimitSearch({.start = std::sqrt(speeds[0] * speeds[1]),
                                      .tolerance = o.tolerance,

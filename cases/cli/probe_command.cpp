@@ -7,29 +7,11 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "cases/cli/option_value.hpp"
 #include "cases/run/probe_history.hpp"
 #include "cases/scene/units.hpp"
 
 namespace hvi::driver {
-
-namespace {
-
-// A value with a unit, in SI; of dimension `expect` (by name) unless that is empty. A plain
-// number is SI. `what` names the option in messages ("--point "), or is empty.
-double si_value(const std::string& text, const std::string& expect, const std::string& what) {
-  scene::Quantity q;
-  try {
-    q = scene::parse_quantity(text);
-  } catch (const scene::UnitError& e) {
-    throw std::invalid_argument(fmt::format("{}'{}': {}", what, text, e.what()));
-  }
-  if (!expect.empty() && !q.bare && scene::dimension_name(q.dim) != expect)
-    throw std::invalid_argument(fmt::format("{}'{}': expected a {}, got {}", what, text, expect,
-                                            scene::dimension_phrase(q.dim)));
-  return q.si;
-}
-
-}  // namespace
 
 int ProbeCli::execute() const {
   std::array<double, 3> x{};
