@@ -11,6 +11,7 @@
 // group did not write changes no bit.)
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "mpm/grid.hpp"
@@ -20,6 +21,13 @@ namespace hvi::mpm {
 struct SharedBlocks {
   static constexpr int colours = 8;
   static constexpr int S = SparseGrid::block_size;
+  // Where component c of grid block b's 64 nodes live in the array a pass adds to (the grid's
+  // values, the node average's sums).
+  using Target = std::function<double*(std::uint32_t b, int c)>;
+  // Set by the solver: after a pass that added `components` per node, exchanges the shared
+  // blocks' sums with the other ranks and sets each shared block's nodes in `target` to the
+  // colour-ordered sum (solver_ranks.cpp). Every rank calls it after the same passes.
+  std::function<void(int components, const Target& target)> combine;
 
   std::vector<std::uint32_t> slot;      // per grid block: its slot, or SparseGrid::none
   std::vector<std::uint32_t> block;     // per slot: the grid block

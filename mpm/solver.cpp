@@ -243,11 +243,7 @@ void Solver::particles_to_grid(Scatter what) {
     }
     auto t = timer_.scope("particles to grid");
     // The components the scatter adds (grid.hpp: mass, momentum, force).
-    const int first = what == Scatter::force ? node_value::f : node_value::mass;
-    const int count = what == Scatter::mass_momentum ? 4 : what == Scatter::force ? 3 : 7;
-    if (distributed()) shared_.start(count);
     mpm::particles_to_grid(what, particles_, bins, grid, context);
-    if (distributed()) combine_shared(first, count);
   });
   if (contact_ && what != Scatter::force) {
     auto t = timer_.scope("contact: normals");
@@ -299,9 +295,7 @@ void Solver::update_remapped_grid() {
 void Solver::grid_to_particles(bool remap) {
   auto t = timer_.scope("grid to particles");
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, const VolumetricAverage*) {
-    if (remap && distributed()) shared_.start(3);
     mpm::grid_to_particles(particles_, bins, grid, transfer_context(), remap);
-    if (remap && distributed()) combine_shared(node_value::q, 3);
   });
 }
 

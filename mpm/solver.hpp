@@ -225,7 +225,7 @@ class Solver {
   void migrate(const std::vector<int>& destination);
   void group_by_material();
   void find_shared_blocks();
-  void combine_shared(int first_component, int components);
+  void combine_shared(int components, const SharedBlocks::Target& target);
   std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }

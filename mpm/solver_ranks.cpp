@@ -5,7 +5,8 @@
 // it adds them in colour order (shared_blocks.hpp): the sum one rank forms, since a node's value
 // is the colour-ordered sum of its groups' sums, each summed over its blocks by key and its points
 // by (material, id) (particle_bins.hpp, group_sums.hpp). So every node a rank's points read holds
-// the bits a run on one rank gives it, after each pass that adds (the scatter, the MUSL remap),
+// the bits a run on one rank gives it, after each pass that adds (the scatter, the MUSL remap,
+// the node average's sums),
 // and the gathers, the stress update, motion and removal need no more than a rank's own points.
 // The maxima and the exact sums are taken over ranks. The results are bitwise those of one rank,
 // for any rank count.
@@ -23,9 +24,10 @@ void Solver::distribute(Communicator* comm) {
   comm_ = comm;
   if (!distributed()) return;
   if (contact_) throw SolverError("a run spread over ranks cannot use contact between bodies yet");
-  if (settings_.dilatation == Dilatation::node_average)
-    throw SolverError("a run spread over ranks cannot use the node-averaged dilatation yet");
   partition_ = Partition();
+  shared_.combine = [this](int components, const SharedBlocks::Target& target) {
+    combine_shared(components, target);
+  };
 }
 
 // Each point to the rank owning its group. The partition is cut on the first step, and anew when
@@ -147,11 +149,11 @@ void Solver::find_shared_blocks() {
   sharing_.shared_blocks += static_cast<std::int64_t>(s.count());
 }
 
-// After a pass that added `components` node values from `first_component` on, with the shared
-// blocks' sums kept apart per colour: sends each shared block's colours to the ranks sharing it,
-// and sets its nodes to the colour-ordered sum of every rank's (shared_blocks.hpp). A message is,
-// per block: its key, the mask of its colours, then 64 nodes x components per colour.
-void Solver::combine_shared(int first_component, int components) {
+// After a pass that added `components` values per node, with the shared blocks' sums kept apart
+// per colour: sends each shared block's colours to the ranks sharing it, and sets its nodes in
+// `target` to the colour-ordered sum of every rank's (shared_blocks.hpp). A message is, per block:
+// its key, the mask of its colours, then 64 nodes x components per colour.
+void Solver::combine_shared(int components, const SharedBlocks::Target& target) {
   auto t = timer_.scope("ranks: shared nodes");
   auto& s = shared_;
   constexpr int colours = SharedBlocks::colours, S = SharedBlocks::S;
@@ -196,7 +198,7 @@ void Solver::combine_shared(int first_component, int components) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i)
     for (int c = 0; c < components; ++c) {
-      double* node = grid_.values(s.block[static_cast<std::size_t>(i)], first_component + c);
+      double* node = target(s.block[static_cast<std::size_t>(i)], c);
       for (int l = 0; l < S; ++l) {
         double sum = 0.0;  // ((0 + G^0) + G^1) + ..., each colour from the rank holding its group
         for (int k = 0; k < colours; ++k) {

@@ -493,6 +493,8 @@ void run_pass(const PassArgs& a, ShapeFunction shape, bool coloured) {
         return added_target(a, b, c);
       });
   };
+  const bool sharing = coloured && a.shared;
+  if (sharing) a.shared->start(added_components(a));
 #pragma omp parallel
   {
     static thread_local Scratch scratch;  // kept from pass to pass: no allocation in the step
@@ -509,6 +511,9 @@ void run_pass(const PassArgs& a, ShapeFunction shape, bool coloured) {
       for (std::int64_t i = 0; i < count; ++i) group(static_cast<std::uint32_t>(i), scratch, -1);
     }
   }
+  if (sharing)
+    a.shared->combine(added_components(a),
+                      [&](std::uint32_t b, int c) { return added_target(a, b, c); });
 }
 
 // Zeroed sums for every block of the grid, 64 nodes x groups x 2 values per block.
@@ -591,6 +596,7 @@ void node_average_scatter(const Particles& particles, const ParticleBins& bins, 
   zero_sums(grid, sums.average.groups, *sums.sums);
   PassArgs a = pass_args(Pass::average_scatter, particles, bins, grid, s);
   a.average = &sums;
+  a.shared = context.shared;
   run_pass(a, context.shape, true);
   finish_averages(*sums.sums);
   finish_pass(s, context);
@@ -643,6 +649,7 @@ void velocity_gradient(Particles& particles, const ParticleBins& bins, SparseGri
   if (dilatation) {
     zero_sums(grid, dilatation->average.groups, *dilatation->sums);
     a.out = trace->data();
+    a.shared = context.shared;
   }
   run_pass(a, context.shape, dilatation != nullptr);
   if (dilatation) finish_averages(*dilatation->sums);

@@ -90,7 +90,8 @@ struct TransferContext {
   // velocity field (the cache holds one stencil per point, on one grid's bins).
   StencilCache* stencils = nullptr;
   // A run spread over ranks: the blocks this rank shares with others, whose sums the passes that
-  // add to the nodes (the scatter, the MUSL remap) keep apart per colour (shared_blocks.hpp).
+  // add to the nodes (the scatter, the MUSL remap, the node average's sums) keep apart per colour
+  // and combine with the other ranks' when the pass ends (shared_blocks.hpp).
   SharedBlocks* shared = nullptr;
 };
 

@@ -80,6 +80,7 @@ struct Case {
   ShapeFunction shape;
   UpdateScheme scheme;
   const char* name;
+  Dilatation dilatation = Dilatation::particle;
 };
 
 void PrintTo(const Case& c, std::ostream* os) {
@@ -92,6 +93,7 @@ TEST_P(DistributedRun, IsBitwiseTheOneRankRun) {
   SolverSettings settings;
   settings.shape = GetParam().shape;
   settings.scheme = GetParam().scheme;
+  settings.dilatation = GetParam().dilatation;
   settings.reorder_interval = 7;
   const Outcome one = run(settings, nullptr);
   // What the scene promises: the cube left during the run, the sphere struck the plate.
@@ -172,7 +174,13 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{ShapeFunction::linear, UpdateScheme::musl, "linear_musl"},
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl"},
                       Case{ShapeFunction::cpgimp, UpdateScheme::usl, "cpgimp_usl"},
-                      Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf"}),
+                      Case{ShapeFunction::gimp, UpdateScheme::usf, "gimp_usf"},
+                      // The node average's sums (the mean stress in the force scatter, the
+                      // dilatation in the gradient pass) are shared like the grid's.
+                      Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_node_average",
+                           Dilatation::node_average},
+                      Case{ShapeFunction::linear, UpdateScheme::usl, "linear_usl_node_average",
+                           Dilatation::node_average}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
