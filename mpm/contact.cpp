@@ -38,13 +38,14 @@ void owners_meeting(const ParticleBins& bins, const SparseGrid& grid, const Spar
 }  // namespace
 
 void BodyContact::compute_normals(const Particles& P, const ParticleBins& bins0, SparseGrid& grid0,
-                                  const TransferContext& context) {
+                                  const TransferContext& context0,
+                                  const TransferContext& context1) {
   // The impactor's field is small, the panel's large: each scatters only the blocks where they
   // meet.
   owners_meeting(bins0, grid0, grid_, meeting0_);
   owners_meeting(bins_, grid_, grid0, meeting1_);
-  outward_normals(P, bins0, grid0, context, normal0_, &meeting0_);
-  outward_normals(P, bins_, grid_, context, normal1_, &meeting1_);
+  outward_normals(P, bins0, grid0, context0, normal0_, &meeting0_);
+  outward_normals(P, bins_, grid_, context1, normal1_, &meeting1_);
 }
 
 namespace {

@@ -56,14 +56,18 @@ class BodyContact {
   ParticleBins& bins() { return bins_; }
   const ParticleBins& bins() const { return bins_; }
 
-  // Each field's outward normals g_k this step (after both are binned).
+  // Each field's outward normals g_k this step (after both are binned), each with its grid's
+  // context (a run spread over ranks shares each grid's blocks apart).
   void compute_normals(const Particles& particles, const ParticleBins& bins0, SparseGrid& grid0,
-                       const TransferContext& context);
+                       const TransferContext& context0, const TransferContext& context1);
 
   // Corrects the nodal velocity `which` (start: p, end: p + f via f, remapped: q) of both fields
   // at every node where they approach; the remapped velocity at every node where the end
   // velocity was corrected. Returns the friction heat of an end correction (J; 0 otherwise).
   double apply(SparseGrid& grid0, NodalVelocity which);
+  // The friction heat of the last correction per field-1 block (0 but for an end correction).
+  const std::vector<double>& block_work() const { return block_work_; }
+  bool has_friction() const { return settings_.friction > 0.0; }
 
   std::size_t bytes() const;
 

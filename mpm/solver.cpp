@@ -35,10 +35,10 @@ Solver::Solver(GridGeometry grid, SolverSettings settings,
   }
 }
 
-TransferContext Solver::transfer_context() const {
+TransferContext Solver::transfer_context(const SparseGrid& grid) const {
   TransferContext c{settings_.shape, half_width_, settings_.flip, dt_};
   if (settings_.stencil_cache && is_gimp(settings_.shape) && !contact_) c.stencils = &stencils_;
-  if (distributed()) c.shared = &shared_;
+  if (distributed()) c.shared = contact_ && &grid == &contact_->grid() ? &shared1_ : &shared_;
   return c;
 }
 
@@ -174,7 +174,10 @@ void Solver::step(double max_dt) {
     auto t = timer_.scope("sort particles");
     sort_by_material_and_block();
   }
-  if (distributed()) find_shared_blocks();
+  if (distributed()) {
+    find_shared_blocks(grid_, shared_);
+    if (contact_) find_shared_blocks(contact_->grid(), shared1_);
+  }
   switch (settings_.scheme) {
     case UpdateScheme::musl:
       particles_to_grid(Scatter::mass_momentum_force);
@@ -229,14 +232,26 @@ void Solver::bin_particles() {
     return;
   }
   const std::uint8_t* field = contact_->assign_fields(particles_).data();
-  mpm::bin_particles(particles_, {settings_.shape, half_width_}, grid_, bins_, extra, field, 0);
-  mpm::bin_particles(particles_, {settings_.shape, half_width_}, contact_->grid(), contact_->bins(),
-                     {}, field, 1);
+  const StencilSource stencil{settings_.shape, half_width_};
+  SparseGrid& grid1 = contact_->grid();
+  if (!distributed()) {
+    mpm::bin_particles(particles_, stencil, grid_, bins_, extra, field, 0);
+    mpm::bin_particles(particles_, stencil, grid1, contact_->bins(), {}, field, 1);
+    return;
+  }
+  // Spread over ranks, each field's grid also holds the other field's blocks that other ranks'
+  // groups may write: the fields meet there, and the points this rank holds of either field read
+  // both fields' sums of those nodes (shared, so combined over the ranks). Field 1 (the impactor,
+  // the fewer points) is binned twice, so that each field's grid knows the other's blocks.
+  mpm::bin_particles(particles_, stencil, grid1, contact_->bins(), {}, field, 1);
+  mpm::bin_particles(particles_, stencil, grid_, bins_, blocks_shared_with_others(grid1), field, 0);
+  mpm::bin_particles(particles_, stencil, grid1, contact_->bins(), blocks_shared_with_others(grid_),
+                     field, 1);
 }
 
 void Solver::particles_to_grid(Scatter what) {
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, VolumetricAverage* volumetric) {
-    TransferContext context = transfer_context();
+    TransferContext context = transfer_context(grid);
     if (volumetric && what != Scatter::mass_momentum) {
       auto t = timer_.scope("mean stress: node average");
       context.mean_stress = &volumetric->mean_stress_sums(particles_, bins, grid, context);
@@ -247,14 +262,16 @@ void Solver::particles_to_grid(Scatter what) {
   });
   if (contact_ && what != Scatter::force) {
     auto t = timer_.scope("contact: normals");
-    contact_->compute_normals(particles_, bins_, grid_, transfer_context());
+    contact_->compute_normals(particles_, bins_, grid_, transfer_context(grid_),
+                              transfer_context(contact_->grid()));
   }
 }
 
 void Solver::apply_contact(NodalVelocity which) {
   if (!contact_) return;
   auto t = timer_.scope("contact");
-  state_.contact_work += contact_->apply(grid_, which);
+  const double work = contact_->apply(grid_, which);
+  state_.contact_work += distributed() ? contact_work_over_ranks(which) : work;
   apply_grid_conditions(contact_->grid(), boundaries_);
   apply_grid_conditions(grid_, boundaries_);
 }
@@ -295,7 +312,7 @@ void Solver::update_remapped_grid() {
 void Solver::grid_to_particles(bool remap) {
   auto t = timer_.scope("grid to particles");
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, const VolumetricAverage*) {
-    mpm::grid_to_particles(particles_, bins, grid, transfer_context(), remap);
+    mpm::grid_to_particles(particles_, bins, grid, transfer_context(grid), remap);
   });
 }
 
@@ -303,13 +320,13 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, VolumetricAverage* volumetric) {
     {  // with the node average, the same pass scatters tr L_p into its sums
       auto t = timer_.scope("velocity gradient");
-      mpm::velocity_gradient(particles_, bins, grid, transfer_context(), which,
+      mpm::velocity_gradient(particles_, bins, grid, transfer_context(grid), which,
                              volumetric ? &volumetric->dilatation_sums(particles_) : nullptr,
                              volumetric ? volumetric->dilatation_values() : nullptr);
     }
     if (volumetric) {
       auto t = timer_.scope("dilatation: node average");
-      volumetric->average_dilatation(particles_, bins, grid, transfer_context());
+      volumetric->average_dilatation(particles_, bins, grid, transfer_context(grid));
     }
   });
 }

@@ -224,8 +224,12 @@ class Solver {
   void count_points();  // collective: the points on every rank, for point_count()
   void migrate(const std::vector<int>& destination);
   void group_by_material();
-  void find_shared_blocks();
-  void combine_shared(int components, const SharedBlocks::Target& target);
+  std::vector<int> writers_elsewhere(std::uint64_t block_key) const;
+  std::vector<std::uint64_t> blocks_shared_with_others(const SparseGrid& grid) const;
+  void find_shared_blocks(const SparseGrid& grid, SharedBlocks& shared);
+  void combine_shared(SharedBlocks& shared, const SparseGrid& grid, int components,
+                      const SharedBlocks::Target& target);
+  double contact_work_over_ranks(NodalVelocity which) const;
   std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
@@ -250,7 +254,7 @@ class Solver {
   }
   void sort_by_material_and_block();
   void compute_material_ranges();
-  TransferContext transfer_context() const;
+  TransferContext transfer_context(const SparseGrid& grid) const;
 
   GridGeometry geometry_;
   SolverSettings settings_;
@@ -283,7 +287,7 @@ class Solver {
   // nodes this rank shares with others this step (solver_ranks.cpp).
   Communicator* comm_ = nullptr;
   Partition partition_;
-  mutable SharedBlocks shared_;
+  mutable SharedBlocks shared_, shared1_;  // of the solver's grid and of contact's field 1
   Sharing sharing_;
   bool leading_ = false;
   std::size_t global_points_ = 0;

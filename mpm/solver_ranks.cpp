@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <map>
 #include <numeric>
 
 #include "mpm/point_exchange.hpp"
@@ -23,11 +24,14 @@ namespace hvi::mpm {
 void Solver::distribute(Communicator* comm) {
   comm_ = comm;
   if (!distributed()) return;
-  if (contact_) throw SolverError("a run spread over ranks cannot use contact between bodies yet");
   partition_ = Partition();
   shared_.combine = [this](int components, const SharedBlocks::Target& target) {
-    combine_shared(components, target);
+    combine_shared(shared_, grid_, components, target);
   };
+  if (contact_)
+    shared1_.combine = [this](int components, const SharedBlocks::Target& target) {
+      combine_shared(shared1_, contact_->grid(), components, target);
+    };
 }
 
 // Each point to the rank owning its group. The partition is cut on the first step, and anew when
@@ -116,35 +120,46 @@ void Solver::group_by_material() {
   compute_material_ranges();
 }
 
-// The blocks of this step's grid that groups of other ranks write too, with those ranks. Block x
-// (on one axis) is written by the groups x / 2 and, for an even x, x / 2 - 1 (a group's points
-// write its own blocks and the next one up, particle_bins.hpp).
-void Solver::find_shared_blocks() {
-  auto t = timer_.scope("ranks: shared nodes");
-  const int me = comm_->rank();
-  auto& s = shared_;
-  s.slot.assign(grid_.block_count(), SparseGrid::none);
-  s.block.clear();
-  s.ranks.clear();
+// The ranks but this one whose groups may write block `block_key`. Block x (on one axis) is
+// written by the groups x / 2 and, for an even x, x / 2 - 1 (a group's points write its own
+// blocks and the next one up, particle_bins.hpp).
+std::vector<int> Solver::writers_elsewhere(std::uint64_t block_key) const {
   auto writers = [](int x) {
     return std::array<int, 2>{x % 2 == 0 && x > 0 ? x / 2 - 1 : x / 2, x / 2};
   };
+  const auto c = SparseGrid::block_coords(block_key);
+  const auto gx = writers(c[0]), gy = writers(c[1]), gz = writers(c[2]);
   std::vector<int> others;
-  for (std::uint32_t b = 0; b < grid_.block_count(); ++b) {
-    const auto c = SparseGrid::block_coords(grid_.key(b));
-    const auto gx = writers(c[0]), gy = writers(c[1]), gz = writers(c[2]);
-    others.clear();
-    for (int z = gz[0]; z <= gz[1]; ++z)
-      for (int y = gy[0]; y <= gy[1]; ++y)
-        for (int x = gx[0]; x <= gx[1]; ++x) {
-          const int r = partition_.rank_of(SparseGrid::block_key(x, y, z));
-          if (r != me && std::find(others.begin(), others.end(), r) == others.end())
-            others.push_back(r);
-        }
+  for (int z = gz[0]; z <= gz[1]; ++z)
+    for (int y = gy[0]; y <= gy[1]; ++y)
+      for (int x = gx[0]; x <= gx[1]; ++x) {
+        const int r = partition_.rank_of(SparseGrid::block_key(x, y, z));
+        if (r != comm_->rank() && std::find(others.begin(), others.end(), r) == others.end())
+          others.push_back(r);
+      }
+  return others;
+}
+
+// The keys of `grid`'s blocks that groups of other ranks may write too.
+std::vector<std::uint64_t> Solver::blocks_shared_with_others(const SparseGrid& grid) const {
+  std::vector<std::uint64_t> keys;
+  for (std::uint32_t b = 0; b < grid.block_count(); ++b)
+    if (!writers_elsewhere(grid.key(b)).empty()) keys.push_back(grid.key(b));
+  return keys;
+}
+
+// The blocks of this step's `grid` that groups of other ranks write too, with those ranks.
+void Solver::find_shared_blocks(const SparseGrid& grid, SharedBlocks& s) {
+  auto t = timer_.scope("ranks: shared nodes");
+  s.slot.assign(grid.block_count(), SparseGrid::none);
+  s.block.clear();
+  s.ranks.clear();
+  for (std::uint32_t b = 0; b < grid.block_count(); ++b) {
+    std::vector<int> others = writers_elsewhere(grid.key(b));
     if (others.empty()) continue;
     s.slot[b] = static_cast<std::uint32_t>(s.block.size());
     s.block.push_back(b);
-    s.ranks.push_back(others);
+    s.ranks.push_back(std::move(others));
   }
   sharing_.shared_blocks += static_cast<std::int64_t>(s.count());
 }
@@ -153,9 +168,9 @@ void Solver::find_shared_blocks() {
 // per colour: sends each shared block's colours to the ranks sharing it, and sets its nodes in
 // `target` to the colour-ordered sum of every rank's (shared_blocks.hpp). A message is, per block:
 // its key, the mask of its colours, then 64 nodes x components per colour.
-void Solver::combine_shared(int components, const SharedBlocks::Target& target) {
+void Solver::combine_shared(SharedBlocks& s, const SparseGrid& grid, int components,
+                            const SharedBlocks::Target& target) {
   auto t = timer_.scope("ranks: shared nodes");
-  auto& s = shared_;
   constexpr int colours = SharedBlocks::colours, S = SharedBlocks::S;
   const std::size_t per_colour = static_cast<std::size_t>(components) * S;
   std::vector<std::vector<double>> out(static_cast<std::size_t>(comm_->size()));
@@ -166,7 +181,7 @@ void Solver::combine_shared(int components, const SharedBlocks::Target& target) 
     if (mask == 0) continue;
     for (const int r : s.ranks[i]) {
       auto& o = out[static_cast<std::size_t>(r)];
-      o.push_back(std::bit_cast<double>(grid_.key(s.block[i])));
+      o.push_back(std::bit_cast<double>(grid.key(s.block[i])));
       o.push_back(static_cast<double>(mask));
       for (int k = 0; k < colours; ++k)
         if (mask & (1u << k)) {
@@ -179,7 +194,7 @@ void Solver::combine_shared(int components, const SharedBlocks::Target& target) 
   const auto in = exchange(std::move(out));
   for (const auto& from : in)
     for (std::size_t at = 0; at < from.size();) {
-      const std::uint32_t b = grid_.find(std::bit_cast<std::uint64_t>(from[at]));
+      const std::uint32_t b = grid.find(std::bit_cast<std::uint64_t>(from[at]));
       const auto mask = static_cast<unsigned>(from[at + 1]);
       at += 2;
       const std::uint32_t i = b == SparseGrid::none ? SparseGrid::none : s.slot[b];
@@ -214,6 +229,34 @@ void Solver::combine_shared(int components, const SharedBlocks::Target& target) 
         node[l] = sum;
       }
     }
+}
+
+// The friction heat of contact's last correction summed over the ranks as one rank sums it: each
+// block's work once, exactly (exact_sum.hpp). A block only this rank holds counts here. A shared
+// block may be held by several ranks, each with the same node values and so the same work: the
+// ranks gather those by key and count each key once.
+double Solver::contact_work_over_ranks(NodalVelocity which) const {
+  if (which != NodalVelocity::end || !contact_->has_friction()) return 0.0;
+  const std::vector<double>& work = contact_->block_work();
+  std::array<ExactSum, 1> alone;
+  std::vector<double> shared;  // (key, work) pairs
+  for (std::uint32_t b = 0; b < work.size(); ++b) {
+    if (work[b] == 0.0) continue;
+    if (shared1_.slot[b] == SparseGrid::none) {
+      alone[0] += work[b];
+    } else {
+      shared.push_back(std::bit_cast<double>(contact_->grid().key(b)));
+      shared.push_back(work[b]);
+    }
+  }
+  add_over_ranks(*comm_, alone);
+  std::map<std::uint64_t, double> once;
+  for (const auto& from : comm_->all_gather(shared))
+    for (std::size_t k = 0; k + 1 < from.size(); k += 2)
+      once.emplace(std::bit_cast<std::uint64_t>(from[k]), from[k + 1]);
+  ExactSum total = alone[0];
+  for (const auto& [key, w] : once) total += w;
+  return total.value();
 }
 
 // Sends out[r] to rank r, counting the bytes that leave this rank.

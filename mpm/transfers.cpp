@@ -625,6 +625,7 @@ void outward_normals(const Particles& particles, const ParticleBins& bins, Spars
   PassArgs a = pass_args(Pass::normals, particles, bins, grid, s);
   a.out = out.data();
   a.owners = owners;
+  a.shared = context.shared;
   run_pass(a, context.shape, true);
 }
 

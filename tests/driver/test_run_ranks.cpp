@@ -1,7 +1,8 @@
 // `mpirun -np N hvi run`: one run spread over the ranks of an MPI job (mpm/solver_ranks.cpp) writes
 // the bytes a run on one rank writes: every snapshot file, particles.xmf and energy.csv, also when
-// it is stopped on 3 ranks and resumed on 2. What a spread run cannot do yet is refused before
-// anything runs. Under mpirun, oversubscribed (this machine has 2 cores).
+// it is stopped on 3 ranks and resumed on 2; also with the node-averaged dilatation and contact.
+// What a spread run cannot do yet (a far field) is refused before anything runs. Under mpirun,
+// oversubscribed (this machine has 2 cores).
 #include <sys/wait.h>
 
 #include <filesystem>
@@ -76,13 +77,15 @@ TEST(RunOnRanks, ProbesReadTheOneRankRunsPoints) {
   EXPECT_EQ(read(one / "probes.csv"), read(spread / "probes.csv"));
 }
 
-// The node-averaged dilatation (the paper's fine front-hole study uses it): its sums are shared
-// between ranks like the grid's, so the demo with it writes the one-rank run's bytes on 2 ranks.
-TEST(RunOnRanks, NodeAveragedDilatationWritesTheOneRankRunsBytes) {
+// The node-averaged dilatation (the paper's fine front-hole study uses it) and contact: their sums
+// are shared between ranks like the grid's, so the demo with both writes the one-rank run's bytes
+// on 2 ranks.
+TEST(RunOnRanks, NodeAverageAndContactWriteTheOneRankRunsBytes) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path one = scratch("ranks_average_one"), spread = scratch("ranks_average_spread");
   const fs::path log = scratch("ranks_average_log.txt");
-  const std::string args = " --threads 1 --set grid.dilatation=node-average" + shortened;
+  const std::string args = " --threads 1 --set grid.dilatation=node-average" +
+                           std::string(" --set 'contact.bodies=[\"projectile\"]'") + shortened;
   ASSERT_EQ(run("run " + demo + " --out " + one.string() + args), 0);
   ASSERT_EQ(on_ranks(2, "run " + demo + " --out " + spread.string() + args, log), 0) << read(log);
   expect_same_output(one, spread, 4);
@@ -91,13 +94,9 @@ TEST(RunOnRanks, NodeAveragedDilatationWritesTheOneRankRunsBytes) {
 TEST(RunOnRanks, RefusesWhatASpreadRunCannotDoYet) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path out = scratch("ranks_refused"), log = scratch("ranks_refused_log.txt");
-  EXPECT_EQ(
-      on_ranks(
-          2, "run " + demo + " --out " + out.string() + " --set 'contact.bodies=[\"projectile\"]'",
-          log),
-      2);
-  EXPECT_NE(read(log).find("cannot use contact between bodies yet"), std::string::npos)
-      << read(log);
+  const std::string hybrid = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml";
+  EXPECT_EQ(on_ranks(2, "run " + hybrid + " --out " + out.string(), log), 2);
+  EXPECT_NE(read(log).find("cannot be spread over ranks yet"), std::string::npos) << read(log);
   EXPECT_FALSE(fs::exists(out / "snapshots"));
 }
 

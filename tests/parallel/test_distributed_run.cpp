@@ -6,7 +6,8 @@
 //
 // The scene: an Al6061 sphere at 2 km/s into an Al6061 plate (Johnson-Cook strength and damage,
 // Mie-Grueneisen), and a cube at 3 km/s that crosses the ranks' pieces of the grid and leaves the
-// domain during the run, on a 48 x 16 x 16 grid of 1 mm cells cut into 7 x 3 x 3 block groups.
+// domain during the run, on a 48 x 16 x 16 grid of 1 mm cells cut into 7 x 3 x 3 block groups;
+// also with the node-averaged dilatation, and with contact between the sphere and the rest.
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -81,6 +82,8 @@ struct Case {
   UpdateScheme scheme;
   const char* name;
   Dilatation dilatation = Dilatation::particle;
+  // Contact (the sphere on a velocity field of its own) with this friction coefficient; < 0: none.
+  double friction = -1.0;
 };
 
 void PrintTo(const Case& c, std::ostream* os) {
@@ -94,11 +97,16 @@ TEST_P(DistributedRun, IsBitwiseTheOneRankRun) {
   settings.shape = GetParam().shape;
   settings.scheme = GetParam().scheme;
   settings.dilatation = GetParam().dilatation;
+  if (GetParam().friction >= 0.0)
+    settings.contact = ContactSettings{{0, 1, 0}, GetParam().friction};
   settings.reorder_interval = 7;
   const Outcome one = run(settings, nullptr);
   // What the scene promises: the cube left during the run, the sphere struck the plate.
   EXPECT_GT(one.solver->removed().particles, 0);
   EXPECT_GT(one.energy.dissipated, 0.0);
+  if (GetParam().friction > 0.0) {
+    EXPECT_GT(one.energy.contact, 0.0);  // friction heat booked
+  }
 
   const auto comm = parallel::make_communicator(*ranks);
   const Outcome spread = run(settings, comm.get());
@@ -180,7 +188,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_node_average",
                            Dilatation::node_average},
                       Case{ShapeFunction::linear, UpdateScheme::usl, "linear_usl_node_average",
-                           Dilatation::node_average}),
+                           Dilatation::node_average},
+                      // Contact: each field's grid also holds the other's shared blocks; the
+                      // normals are shared too, the friction heat counted once per block.
+                      Case{ShapeFunction::gimp, UpdateScheme::musl, "gimp_musl_contact",
+                           Dilatation::particle, 0.0},
+                      Case{ShapeFunction::cpgimp, UpdateScheme::usf, "cpgimp_usf_contact_friction",
+                           Dilatation::node_average, 0.3}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace
