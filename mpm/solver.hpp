@@ -2,6 +2,7 @@
 // The explicit MPM solver: one step of the update schemes MUSL (default), USL and USF (the
 // paper's Sec. 2.3 flowchart) as a short list of named phases. Particles, grid, materials and
 // boundary conditions are owned here; coupled models enter through GridCoupling hooks.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -144,15 +145,21 @@ class Solver {
   // ranks, which wait in follow(), to make it too. What a follower does beyond the solver's own
   // calls: `restore` when rank 0 restores a checkpoint (read its share of the points, declaring
   // the same fields), and `write(what)` when rank 0 writes a file every rank writes a part of
-  // (announce_write(what); mpm/io/). stop_followers() (on rank 0, once its driver is done) ends
-  // their follow().
+  // (announce_write(what); mpm/io/), and `measure` when rank 0 takes the closing measures
+  // (announce_measure(): each rank gives its points' extrema to max_pairs_over_ranks).
+  // stop_followers() (on rank 0, once its driver is done) ends their follow().
   struct FollowerHooks {
     std::function<void()> restore;
     std::function<void(double what)> write;
+    std::function<void()> measure;
   };
   void lead() { leading_ = true; }
   void follow(const FollowerHooks& hooks);
   void announce_write(double what) const { announce(Command::write, what); }
+  void announce_measure() const { announce(Command::measure); }
+  // Collective: pairs (a, b), one after the other, each replaced by the largest of every rank's,
+  // (a, b) ordered by a, then b. The identity on one rank.
+  std::vector<double> max_pairs_over_ranks(std::vector<double> pairs) const;
   static void stop_followers(Communicator& comm);
   // The points of the run on every rank (after a step, or when all are on one rank).
   std::size_t point_count() const { return distributed() ? global_points_ : particles_.size(); }
@@ -200,6 +207,14 @@ class Solver {
   EnergyReport energy() const;
   // The largest mean pressure -tr(sigma)/3 of any point now, Pa (collective; -inf without points).
   double peak_pressure() const;
+  // The positions of the points with these ids, wherever they are, in the order of their ids
+  // (collective: on a run spread over ranks, rank 0 asks with its ids and gets every rank's
+  // points; the others call it through follow()). Points no longer in the run are left out.
+  struct PointPosition {
+    std::int64_t id;
+    std::array<double, 3> x;
+  };
+  std::vector<PointPosition> positions_of(std::vector<std::int64_t> ids) const;
   PhaseTimer& timer() { return timer_; }
   const std::vector<ParticleRange>& material_ranges() const { return ranges_; }
   // Bytes held by particles, grid and bins now.
@@ -242,7 +257,9 @@ class Solver {
     removal_events,
     gather,
     pressure,
-    write
+    write,
+    positions,
+    measure
   };
   void announce(Command command, double argument = 0.0) const;
 

@@ -309,8 +309,57 @@ void Solver::follow(const FollowerHooks& hooks) {
       case Command::write:
         hooks.write(message.at(1));
         break;
+      case Command::positions:
+        (void)positions_of({});
+        break;
+      case Command::measure:
+        hooks.measure();
+        break;
     }
   }
+}
+
+std::vector<double> Solver::max_pairs_over_ranks(std::vector<double> pairs) const {
+  if (!distributed()) return pairs;
+  for (const auto& from : comm_->all_gather(pairs))
+    for (std::size_t k = 0; k + 1 < std::min(from.size(), pairs.size()); k += 2)
+      if (from[k] > pairs[k] || (from[k] == pairs[k] && from[k + 1] > pairs[k + 1])) {
+        pairs[k] = from[k];
+        pairs[k + 1] = from[k + 1];
+      }
+  return pairs;
+}
+
+std::vector<Solver::PointPosition> Solver::positions_of(std::vector<std::int64_t> ids) const {
+  announce(Command::positions);
+  if (distributed()) {  // rank 0's ids to every rank
+    std::vector<double> message(ids.size());
+    for (std::size_t k = 0; k < ids.size(); ++k) message[k] = std::bit_cast<double>(ids[k]);
+    comm_->broadcast(message);
+    ids.resize(message.size());
+    for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = std::bit_cast<std::int64_t>(message[k]);
+  }
+  std::sort(ids.begin(), ids.end());
+  std::vector<double> mine;  // (id, x, y, z) of this rank's points among them
+  const auto& P = particles_;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (std::binary_search(ids.begin(), ids.end(), P.id[p])) {
+      mine.push_back(std::bit_cast<double>(P.id[p]));
+      mine.insert(mine.end(), &P.position[3 * p], &P.position[3 * p] + 3);
+    }
+  std::vector<PointPosition> found;
+  const auto add = [&](const std::vector<double>& from) {
+    for (std::size_t k = 0; k + 4 <= from.size(); k += 4)
+      found.push_back(
+          {std::bit_cast<std::int64_t>(from[k]), {from[k + 1], from[k + 2], from[k + 3]}});
+  };
+  if (distributed())
+    for (const auto& from : comm_->all_gather(mine)) add(from);
+  else
+    add(mine);
+  std::sort(found.begin(), found.end(),
+            [](const PointPosition& a, const PointPosition& b) { return a.id < b.id; });
+  return found;
 }
 
 // Every rank's removal events on every rank, listed by step, then id, as one rank lists them.

@@ -21,7 +21,18 @@ struct RunRecord {
 // Updates the running maxima (called at every energy.csv row).
 void track(const mpm::Solver& solver, RunRecord& record);
 
+// The measures that read points (extent_max/min, diameter, field_max/min) are each the largest
+// of a pair (value, tie) over the points: the tie is the half spacing of the point that decides an
+// extent or a diameter with surface = true, so two points at the same place decide it alike in
+// any order. point_extrema gives this rank's pairs, in the order of the measures;
+// mpm::Solver::max_pairs_over_ranks takes them over the ranks of a spread run.
+std::vector<double> point_extrema(const std::vector<scene::MeasureSettings>& measures,
+                                  const mpm::Solver& solver);
+
+// Every measure but the holes and the probes, with the point extrema of all ranks (collective on
+// a spread run: the energy).
 std::map<std::string, double> evaluate(const std::vector<scene::MeasureSettings>& measures,
-                                       const mpm::Solver& solver, const RunRecord& record);
+                                       const mpm::Solver& solver, const RunRecord& record,
+                                       const std::vector<double>& extrema);
 
 }  // namespace hvi::driver

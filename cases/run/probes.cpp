@@ -80,13 +80,18 @@ void Probes::choose_particles(Probe& probe, const mpm::Solver& solver, double h,
   probe.slot.clear();
   if (nearest == P.size()) return;
   body = P.body[nearest];
+  std::vector<std::size_t> chosen;
   for (std::size_t p = 0; p < P.size(); ++p)
     if (P.id[p] >= first_id && P.body[p] == body &&
-        distance2(X(p), probe.point) <= std::max(h * h, best)) {
-      probe.slot[P.id[p]] = probe.ids.size();
-      probe.ids.push_back(P.id[p]);
-      probe.reference.insert(probe.reference.end(), X(p), X(p) + 3);
-    }
+        distance2(X(p), probe.point) <= std::max(h * h, best))
+      chosen.push_back(p);
+  // In the order of their ids: the probe sums them so, whatever the order of the arrays.
+  std::sort(chosen.begin(), chosen.end(), [&](auto a, auto b) { return P.id[a] < P.id[b]; });
+  for (const std::size_t p : chosen) {
+    probe.slot[P.id[p]] = probe.ids.size();
+    probe.ids.push_back(P.id[p]);
+    probe.reference.insert(probe.reference.end(), X(p), X(p) + 3);
+  }
 }
 
 void Probes::zone_grew(const mpm::Solver& solver, std::int64_t first_id) {
@@ -159,11 +164,22 @@ void Probes::open(const std::filesystem::path& dir, std::int64_t resume_step) {
   log_.flush();
 }
 
+Probes::Positions Probes::positions(const mpm::Solver& solver) const {
+  std::vector<std::int64_t> ids;
+  for (const auto& p : probes_)
+    if (!p.far_field) ids.insert(ids.end(), p.ids.begin(), p.ids.end());
+  Positions at;
+  if (ids.empty()) return at;
+  for (const auto& q : solver.positions_of(std::move(ids))) at.emplace(q.id, q.x);
+  return at;
+}
+
 void Probes::record(const mpm::Solver& solver) {
   if (probes_.empty()) return;
   log_ << fmt::format("{},{:.17g}", solver.step_count(), solver.time());
+  const Positions at = positions(solver);
   for (auto& p : probes_) {
-    const double u = value(p, solver);
+    const double u = value(p, at);
     if (std::abs(u) > std::abs(p.peak)) p.peak = u;
     log_ << fmt::format(",{:.17g}", u);
   }
@@ -173,21 +189,23 @@ void Probes::record(const mpm::Solver& solver) {
 
 std::map<std::string, double> Probes::values(const mpm::Solver& solver) const {
   std::map<std::string, double> out;
+  const Positions at = positions(solver);
   for (const auto& p : probes_) {
-    out[p.name] = value(p, solver);
+    out[p.name] = value(p, at);
     out[p.name + "_peak"] = p.peak;
   }
   return out;
 }
 
-double Probes::value(const Probe& p, const mpm::Solver& solver) const {
+// The mean over the probe's points, in the order of its ids (so the same bits wherever the
+// points are).
+double Probes::value(const Probe& p, const Positions& at) const {
   if (p.far_field) return hybrid_->far_field().displacement()[3 * p.node + p.axis];
-  const auto& P = solver.particles();
   double sum = 0;
   std::size_t found = 0;
-  for (std::size_t q = 0; q < P.size(); ++q)
-    if (const auto it = p.slot.find(P.id[q]); it != p.slot.end()) {
-      sum += P.position[3 * q + p.axis] - p.reference[3 * it->second + p.axis];
+  for (std::size_t k = 0; k < p.ids.size(); ++k)
+    if (const auto it = at.find(p.ids[k]); it != at.end()) {
+      sum += it->second[static_cast<std::size_t>(p.axis)] - p.reference[3 * k + p.axis];
       ++found;
     }
   // Particles that left the grid no longer count; none left: not a number.

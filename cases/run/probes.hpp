@@ -64,7 +64,11 @@ class Probes {
     std::unordered_map<std::int64_t, std::size_t> slot;  // particle id -> index into ids
     double peak = 0.0;                                   // of largest magnitude so far
   };
-  double value(const Probe& p, const mpm::Solver& solver) const;
+  // Where each particle probe's points are now, by id: one call for all probes, which on a run
+  // spread over ranks asks every rank for its points among them (mpm::Solver::positions_of).
+  using Positions = std::unordered_map<std::int64_t, std::array<double, 3>>;
+  Positions positions(const mpm::Solver& solver) const;
+  double value(const Probe& p, const Positions& at) const;
   // Follows the particles from `first` (index) near the probe's point, taking their undeformed
   // positions from `reference` (3 per particle, in the order of their ids from `first_id`), or
   // their positions now when it is empty.

@@ -98,7 +98,6 @@ class SceneRun {
   void measure_holes();
   void write_snapshots();
   void checkpoint(double wall);
-  bool measures_read_points() const;
   void check_same_state() const;
   void print_result(int code, double rate, std::size_t peak_memory, const mpm::EnergyReport& e,
                     double balance) const;
@@ -176,8 +175,8 @@ int SceneRun::build() {
       solver_->initialise();
       if (hybrid_) hybrid_->record_reference_positions(*solver_);
     }
-    // Probes choose their points among all of them: a spread run's are gathered on rank 0 (and
-    // again before each energy row; the next step spreads them).
+    // Probes choose their points among all of them: a spread run's are gathered on rank 0 once;
+    // the first step spreads them, and each row asks the ranks for the probes' points alone.
     if (has_probes(scene_)) solver_->gather_to_root();
     probes_ = std::make_unique<Probes>(scene_, *solver_, hybrid_.get());
     if (options_.resume) probes_->load(extras_);
@@ -398,7 +397,6 @@ void SceneRun::grow_zone() {
 void SceneRun::log_energy() {
   mpm::Solver& s = *solver_;
   auto t = s.timer().scope("energy");
-  if (!probes_->empty()) s.gather_to_root();  // probes follow points wherever they are
   const mpm::EnergyReport e = s.energy();
   energy_log_->write(s, e);
   probes_->record(s);
@@ -464,16 +462,6 @@ void SceneRun::check_same_state() const {
       dir_.string(), scene::resumable_keys));
 }
 
-// Whether the closing measures read the points themselves (then gathered on rank 0 of a run spread
-// over ranks), not only the snapshots, the energies and the records.
-bool SceneRun::measures_read_points() const {
-  if (!probes_->empty()) return true;
-  return std::any_of(scene_.measures.begin(), scene_.measures.end(), [](const auto& m) {
-    return m.kind == "extent_max" || m.kind == "extent_min" || m.kind == "diameter" ||
-           m.kind == "field_max" || m.kind == "field_min";
-  });
-}
-
 // wall: this invocation's time-loop seconds up to the state written.
 void SceneRun::checkpoint(double wall) {
   auto t = solver_->timer().scope("write checkpoint");
@@ -495,7 +483,6 @@ void SceneRun::checkpoint(double wall) {
 // per phase on the console; timing.csv, the holes of the final snapshot and summary.json/.toml.
 int SceneRun::finish(int code) {
   mpm::Solver& s = *solver_;
-  if (measures_read_points()) s.gather_to_root();
   const mpm::EnergyReport e = s.energy();
   const double balance =
       initial_energy_ != 0.0 ? (e.total() - initial_energy_) / initial_energy_ : 0.0;
@@ -505,7 +492,9 @@ int SceneRun::finish(int code) {
   print_result(code, rate, peak_memory, e, balance);
   print_far_field();
   record_.initial_energy = initial_energy_;
-  auto measured = evaluate(scene_.measures, s, record_);
+  s.announce_measure();  // the other ranks give their points' extrema too
+  const std::vector<double> extrema = s.max_pairs_over_ranks(point_extrema(scene_.measures, s));
+  auto measured = evaluate(scene_.measures, s, record_, extrema);
   measured.merge(probes_->values(s));
   for (const auto& [name, value] : measured) fmt::print("  measure {} = {:.8g}\n", name, value);
   fmt::print("\n{}\n", s.timer().table());
@@ -754,8 +743,11 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
           *solver, options.shared_files);
   };
   try {
-    solver->follow(
-        {[&] { mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver); }, write});
+    const auto measure = [&] {
+      (void)solver->max_pairs_over_ranks(point_extrema(scene.measures, *solver));
+    };
+    solver->follow({[&] { mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver); },
+                    write, measure});
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi: rank {}: the run failed: {}\n", options.ranks->rank(), e.what());
     std::fflush(nullptr);

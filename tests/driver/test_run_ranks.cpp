@@ -5,6 +5,7 @@
 // oversubscribed (this machine has 2 cores).
 #include <sys/wait.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -55,16 +56,26 @@ TEST(RunOnRanks, WritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
   EXPECT_EQ(summary_number(spread, "ranks"), 2.0);
 }
 
-// A displacement probe chooses its points among all of them and reads them at every energy row
-// (rank 0 gathers them): probes.csv and every output file are the one-rank run's bytes.
-TEST(RunOnRanks, ProbesReadTheOneRankRunsPoints) {
+// A displacement probe chooses its points among all of them (rank 0 gathers them once) and reads
+// them at every energy row (the ranks send rank 0 those points alone); the closing measures that
+// read points are maxima taken over the ranks. probes.csv, every output file and the measures are
+// the one-rank run's bytes.
+TEST(RunOnRanks, ProbesAndPointMeasuresReadTheOneRankRunsPoints) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path scene = scratch("ranks_probe.toml");
   // On the front sheet where the sphere strikes it: its points move apart from the first steps.
   std::ofstream(scene) << read(demo)
                        << "\n[[measure]]\nname = \"front_deflection\"\nkind = \"displacement\"\n"
                           "point = [\"0.5 mm\", \"0.5 mm\", \"-0.25 mm\"]\nbody = \"panel.front\"\n"
-                          "axis = \"z\"\n";
+                          "axis = \"z\"\n"
+                          // The points that read every point at the end: the furthest projectile
+                          // point back, the widest front-sheet point, the largest plastic strain.
+                          "[[measure]]\nname = \"tail\"\nkind = \"extent_max\"\naxis = \"z\"\n"
+                          "body = \"projectile\"\nsurface = true\n"
+                          "[[measure]]\nname = \"width\"\nkind = \"diameter\"\naxis = \"z\"\n"
+                          "body = \"panel.front\"\nsurface = true\n"
+                          "[[measure]]\nname = \"strain\"\nkind = \"field_max\"\n"
+                          "field = \"plastic_strain\"\n";
   const fs::path one = scratch("ranks_probe_one"), spread = scratch("ranks_probe_spread");
   const fs::path log = scratch("ranks_probe_log.txt");
   const std::string args =
@@ -75,6 +86,18 @@ TEST(RunOnRanks, ProbesReadTheOneRankRunsPoints) {
   expect_same_output(one, spread, 4);
   EXPECT_FALSE(read(one / "probes.csv").empty());
   EXPECT_EQ(read(one / "probes.csv"), read(spread / "probes.csv"));
+  for (const char* m : {"tail", "width", "strain", "front_deflection", "front_deflection_peak"}) {
+    EXPECT_FALSE(std::isnan(summary_number(one, m))) << m;
+    EXPECT_EQ(summary_number(one, m), summary_number(spread, m)) << m;
+  }
+  // Rank 0 gathered every point once, to choose the probe's points; each row asked the ranks for
+  // those points alone, and the closing measures their maxima (the phase table's last column
+  // counts the calls).
+  const std::string said = read(log);
+  const auto row = said.find("ranks: gather for output");
+  ASSERT_NE(row, std::string::npos) << said;
+  const std::string line = said.substr(row, said.find('\n', row) - row);
+  EXPECT_EQ(line.substr(line.find_last_of(' ') + 1), "1") << line;
 }
 
 // The node-averaged dilatation (the paper's fine front-hole study uses it) and contact: their sums
