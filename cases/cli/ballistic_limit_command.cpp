@@ -325,22 +325,32 @@ int run_ballistic_limit(const BallisticLimitOptions& o, const parallel::Ranks& r
   }
   fs::create_directories(fs::path(o.out) / "trials");
   Study all{fmt::format("ballistic limit of {}", o.scene), o.scene, {}};
-  fmt::print("hvi ballistic-limit: {} — {} search{}, tolerance {:g}%\n", o.scene, searches.size(),
-             searches.size() == 1 ? "" : "es", o.tolerance * 100);
+  // Under mpirun every rank runs the same searches: each round's trials are shared among the
+  // ranks (run_study), and every rank reads their outcomes when all have ended; rank 0 writes.
+  const bool root = ranks.root();
+  if (root)
+    fmt::print("hvi ballistic-limit: {} — {} search{}, tolerance {:g}%{}\n", o.scene,
+               searches.size(), searches.size() == 1 ? "" : "es", o.tolerance * 100,
+               ranks.size() > 1
+                   ? fmt::format(", each round's trials shared among {} ranks", ranks.size())
+                   : "");
   auto going = [](const Search& x) { return x.failed.empty() && x.search.next().has_value(); };
   while (std::any_of(searches.begin(), searches.end(), going)) {
     const int code = run_round(s, o, searches, all, by_diameter, ranks);
     if (code != success) {
-      fmt::print("hvi ballistic-limit: interrupted; run the same command again to resume\n");
+      if (root)
+        fmt::print("hvi ballistic-limit: interrupted; run the same command again to resume\n");
       return code;
     }
-    write_limits(s, o, searches, by_diameter);
+    if (root) write_limits(s, o, searches, by_diameter);
   }
-  write_limits(s, o, searches, by_diameter);
-  print_limits(searches, by_diameter);
-  write_experiments(o, matching_shots(s, o));
-  write_srl(s, o, speeds);
-  plot(o);
+  if (root) {
+    write_limits(s, o, searches, by_diameter);
+    print_limits(searches, by_diameter);
+    write_experiments(o, matching_shots(s, o));
+    write_srl(s, o, speeds);
+    plot(o);
+  }
   return std::all_of(searches.begin(), searches.end(),
                      [](auto& x) { return x.failed.empty() && x.search.converged(); })
              ? success

@@ -315,15 +315,17 @@ int run(Commands& c, const std::string& command_line, const hvi::parallel::Ranks
   return hvi::driver::run_scene(scene, options);
 }
 
-// Under an MPI launcher, the commands but hvi run and hvi sweep run on one rank: say so before
-// doing anything.
+// Under an MPI launcher, the commands but hvi run, sweep, validate and ballistic-limit run on one
+// rank: say so before doing anything.
 bool refuse_ranks(const Commands& c, const hvi::parallel::Ranks& ranks) {
-  if (ranks.size() == 1 || *c.sweep_cmd || *c.run || *c.validate->command) return false;
+  if (ranks.size() == 1 || *c.sweep_cmd || *c.run || *c.validate->command ||
+      *c.ballistic_limit->command)
+    return false;
   if (ranks.root())
     fmt::print(stderr,
                "hvi: started as {} ranks of an MPI job; only `hvi run` (one run spread over the "
-               "ranks), `hvi sweep` and `hvi validate` (one run per rank at a time) share their "
-               "work among ranks. "
+               "ranks), `hvi sweep`, `hvi validate` and `hvi ballistic-limit` (one run per rank at "
+               "a time) share their work among ranks. "
                "Start this command without mpirun, or with -np 1\n",
                ranks.size());
   return true;

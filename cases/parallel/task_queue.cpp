@@ -143,6 +143,11 @@ void share_tasks([[maybe_unused]] const Ranks& ranks, std::size_t n, const RunTa
       Dispatcher(ranks, comm, n, run, finished).dispatch();
     else
       work(run, comm);
+    // A rank told there is nothing more may be the first done: every rank waits for the last
+    // task to end, so that each then reads every task's output (hvi ballistic-limit's rounds).
+    MPI_Request all_done;
+    MPI_Ibarrier(comm, &all_done);
+    wait_idly(all_done);
     MPI_Comm_free(&comm);
     return;
   }

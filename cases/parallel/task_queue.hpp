@@ -25,7 +25,8 @@ using RunTask = std::function<TaskResult(std::size_t k)>;
 using TaskFinished = std::function<bool(std::size_t k, const TaskResult& result)>;
 
 // Runs the tasks 0 .. n-1 once each over the ranks. Every rank calls it with the same n; it
-// returns on every rank when all tasks handed out have ended. On one rank: in order, here.
+// returns on every rank when all tasks handed out have ended (on every rank). On one rank: in
+// order, here.
 void share_tasks(const Ranks& ranks, std::size_t n, const RunTask& run,
                  const TaskFinished& finished);
 

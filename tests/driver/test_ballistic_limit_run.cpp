@@ -2,7 +2,10 @@
 // the first trial is the SRL equation's diameter, every trial's outcome is its run's measured
 // rear sheet, the limit is the midpoint of the tightest bracket the trials give, and the command
 // run again runs nothing new. Also hvi validate's errors on bad input.
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -60,6 +63,40 @@ TEST(BallisticLimitRun, TrialsBracketTheLimitAndResume) {
   ASSERT_EQ(hvi::test::run(args, &err, &said), 0) << err << said;
   EXPECT_EQ(said.find("running"), std::string::npos) << said;
   EXPECT_EQ(hvi::analysis::read_csv(out / "trials.csv").rows.size(), trials.rows.size());
+}
+
+// Under mpirun the searches of two speeds share each round's trials among 2 ranks: the trials,
+// their outcomes and the limits are the one-rank command's, and rank 1 ran some of them.
+TEST(BallisticLimitRun, TwoRanksShareEachRoundsTrials) {
+  const std::string mpirun = HVI_MPIEXEC;
+  if (mpirun.empty()) GTEST_SKIP() << "hvi is built without MPI";
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "under the sanitizers: Open MPI's plug-ins keep allocations to exit "
+                  "(tests/sanitizers/lsan.supp)";
+#endif
+  const fs::path one = hvi::test::scratch("ballistic_limit_one"),
+                 two = hvi::test::scratch("ballistic_limit_two");
+  const fs::path log = hvi::test::scratch("ballistic_limit_two.log");
+  const std::string args = "ballistic-limit " + scene +
+                           " --speeds 3,4km/s --tolerance 0.3 --max-trials 4 --threads 1 --out ";
+  ASSERT_EQ(hvi::test::run_logged(args + one.string(), log), 0) << hvi::test::read(log);
+  const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                              mpirun + " --oversubscribe -np 2 " + HVI_BINARY + " " + args +
+                              two.string() + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << hvi::test::read(log);
+  const std::string console = hvi::test::read(log);
+  EXPECT_NE(console.find("shared among 2 ranks"), std::string::npos) << console;
+  EXPECT_NE(console.find("(rank 1)"), std::string::npos) << console;
+  EXPECT_EQ(hvi::test::read(one / "trials.csv"), hvi::test::read(two / "trials.csv"));
+  const auto a = hvi::analysis::read_csv(one / "ballistic_limit.csv"),
+             b = hvi::analysis::read_csv(two / "ballistic_limit.csv");
+  ASSERT_EQ(a.rows.size(), 2u);
+  ASSERT_EQ(b.rows.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k)
+    for (const char* c : {"speed_km_s", "critical_diameter_mm", "stopped_mm", "perforated_mm",
+                          "trials", "status", "srl_critical_diameter_mm"})
+      EXPECT_EQ(a.rows[k][a.column(c)], b.rows[k][b.column(c)]) << c;
 }
 
 TEST(BallisticLimitRun, BadOptionsAreRefusedBeforeAnyRun) {

@@ -3,6 +3,8 @@
 // stop, no further task is handed out and those under way still report. Run plainly (one rank) and
 // under mpirun on 3 ranks, where every rank takes a share. The tests' own main joins the job.
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -75,6 +77,33 @@ TEST(TaskQueue, ConsecutiveCallsKeepApart) {
       EXPECT_EQ(heard[0] + heard[1], 2) << "call " << call;
     }
   }
+}
+
+// Every rank returns only when every task has ended, on whichever rank: each task leaves a file
+// as it ends (the last after 300 ms), and on return every rank finds all of them. Without the
+// wait, a rank told there is nothing more returned while others still ran.
+TEST(TaskQueue, EveryRankReturnsWhenEveryTaskHasEnded) {
+  const std::size_t n = 5;
+  const auto dir = std::filesystem::path(testing::TempDir()) /
+                   ("hvi_task_queue_" + std::to_string(ranks->size()));
+  if (ranks->root()) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  share_tasks(
+      *ranks, 1, [&](std::size_t) { return TaskResult{}; },
+      [](std::size_t, const TaskResult&) { return true; });  // rank 0 made dir before this
+  share_tasks(
+      *ranks, n,
+      [&](std::size_t k) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(k + 1 == n ? 300 : 10));
+        std::ofstream(dir / std::to_string(k)) << k;
+        return TaskResult{};
+      },
+      [](std::size_t, const TaskResult&) { return true; });
+  for (std::size_t k = 0; k < n; ++k)
+    EXPECT_TRUE(std::filesystem::exists(dir / std::to_string(k)))
+        << "task " << k << ", rank " << ranks->rank();
 }
 
 }  // namespace
