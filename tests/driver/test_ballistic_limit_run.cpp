@@ -15,6 +15,7 @@
 #include "analysis/table.hpp"
 #include "cases/cli/rear_outcome.hpp"
 #include "tests/support/run_hvi.hpp"
+#include "tests/support/sanitizers.hpp"
 
 namespace {
 
@@ -69,11 +70,7 @@ TEST(BallisticLimitRun, TrialsBracketTheLimitAndResume) {
 // their outcomes and the limits are the one-rank command's, and rank 1 ran some of them.
 TEST(BallisticLimitRun, TwoRanksShareEachRoundsTrials) {
   const std::string mpirun = HVI_MPIEXEC;
-  if (mpirun.empty()) GTEST_SKIP() << "hvi is built without MPI";
-#ifdef __SANITIZE_ADDRESS__
-  GTEST_SKIP() << "under the sanitizers: Open MPI's plug-ins keep allocations to exit "
-                  "(tests/sanitizers/lsan.supp)";
-#endif
+  HVI_SKIP_WITHOUT_MPIRUN(mpirun);
   const fs::path one = hvi::test::scratch("ballistic_limit_one"),
                  two = hvi::test::scratch("ballistic_limit_two");
   const fs::path log = hvi::test::scratch("ballistic_limit_two.log");

@@ -99,11 +99,7 @@ TEST(Sweep, TheCommandLineOverridesARunsOwnSetButMayNotFixAnAxis) {
 // rank's sweep writes, but for the runs' own wall times and memory peaks.
 TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
   const std::string mpirun = HVI_MPIEXEC;
-  if (mpirun.empty()) GTEST_SKIP() << "hvi is built without MPI";
-#ifdef __SANITIZE_ADDRESS__
-  GTEST_SKIP() << "under the sanitizers: Open MPI's plug-ins keep allocations to exit "
-                  "(tests/sanitizers/lsan.supp)";
-#endif
+  HVI_SKIP_WITHOUT_MPIRUN(mpirun);
   const fs::path one = fs::path(testing::TempDir()) / "hvi_sweep_one_rank";
   const fs::path two = fs::path(testing::TempDir()) / "hvi_sweep_two_ranks";
   fs::remove_all(one);
