@@ -239,7 +239,7 @@ class Solver {
   void count_points();  // collective: the points on every rank, for point_count()
   void migrate(const std::vector<int>& destination);
   void group_by_material();
-  std::vector<int> writers_elsewhere(std::uint64_t block_key) const;
+  void writers_elsewhere(std::uint64_t block_key, std::vector<int>& others) const;
   std::vector<std::uint64_t> blocks_shared_with_others(const SparseGrid& grid) const;
   void find_shared_blocks(const SparseGrid& grid, SharedBlocks& shared);
   void combine_shared(SharedBlocks& shared, const SparseGrid& grid, int components,

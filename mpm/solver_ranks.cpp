@@ -120,16 +120,17 @@ void Solver::group_by_material() {
   compute_material_ranges();
 }
 
-// The ranks but this one whose groups may write block `block_key`. Block x (on one axis) is
-// written by the groups x / 2 and, for an even x, x / 2 - 1 (a group's points write its own
-// blocks and the next one up, particle_bins.hpp).
-std::vector<int> Solver::writers_elsewhere(std::uint64_t block_key) const {
+// Into `others`: the ranks but this one whose groups may write block `block_key`. Block x (on
+// one axis) is written by the groups x / 2 and, for an even x, x / 2 - 1 (a group's points write
+// its own blocks and the next one up, particle_bins.hpp). Called for every block every step: the
+// caller's vector is reused.
+void Solver::writers_elsewhere(std::uint64_t block_key, std::vector<int>& others) const {
   auto writers = [](int x) {
     return std::array<int, 2>{x % 2 == 0 && x > 0 ? x / 2 - 1 : x / 2, x / 2};
   };
   const auto c = SparseGrid::block_coords(block_key);
   const auto gx = writers(c[0]), gy = writers(c[1]), gz = writers(c[2]);
-  std::vector<int> others;
+  others.clear();
   for (int z = gz[0]; z <= gz[1]; ++z)
     for (int y = gy[0]; y <= gy[1]; ++y)
       for (int x = gx[0]; x <= gx[1]; ++x) {
@@ -137,14 +138,16 @@ std::vector<int> Solver::writers_elsewhere(std::uint64_t block_key) const {
         if (r != comm_->rank() && std::find(others.begin(), others.end(), r) == others.end())
           others.push_back(r);
       }
-  return others;
 }
 
 // The keys of `grid`'s blocks that groups of other ranks may write too.
 std::vector<std::uint64_t> Solver::blocks_shared_with_others(const SparseGrid& grid) const {
   std::vector<std::uint64_t> keys;
-  for (std::uint32_t b = 0; b < grid.block_count(); ++b)
-    if (!writers_elsewhere(grid.key(b)).empty()) keys.push_back(grid.key(b));
+  std::vector<int> others;
+  for (std::uint32_t b = 0; b < grid.block_count(); ++b) {
+    writers_elsewhere(grid.key(b), others);
+    if (!others.empty()) keys.push_back(grid.key(b));
+  }
   return keys;
 }
 
@@ -154,12 +157,13 @@ void Solver::find_shared_blocks(const SparseGrid& grid, SharedBlocks& s) {
   s.slot.assign(grid.block_count(), SparseGrid::none);
   s.block.clear();
   s.ranks.clear();
+  std::vector<int> others;
   for (std::uint32_t b = 0; b < grid.block_count(); ++b) {
-    std::vector<int> others = writers_elsewhere(grid.key(b));
+    writers_elsewhere(grid.key(b), others);
     if (others.empty()) continue;
     s.slot[b] = static_cast<std::uint32_t>(s.block.size());
     s.block.push_back(b);
-    s.ranks.push_back(std::move(others));
+    s.ranks.push_back(others);
   }
   sharing_.shared_blocks += static_cast<std::int64_t>(s.count());
 }
