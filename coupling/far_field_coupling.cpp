@@ -1,5 +1,6 @@
 #include "coupling/far_field_coupling.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -79,9 +80,16 @@ void FarFieldCoupling::retie(const InterfaceBand& band) {
     throw std::invalid_argument("the interface band ties no far-field node to the MPM grid");
 }
 
+void FarFieldCoupling::spread(const mpm::GridRanks& ranks) {
+  if (growing_)
+    throw std::invalid_argument(
+        "a far-field zone that grows ([far_field.zone.grow]) cannot be spread over ranks yet");
+  ranks_ = ranks;
+}
+
 void FarFieldCoupling::request_blocks(std::vector<std::uint64_t>& keys) const {
   for (const Tie& t : ties_)
-    keys.push_back(mpm::SparseGrid::key_of_node(t.grid[0], t.grid[1], t.grid[2]));
+    if (!ranks_ || ranks_->owner(block_of(t)) == ranks_->comm->rank()) keys.push_back(block_of(t));
 }
 
 void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double, double dt) {
@@ -91,7 +99,9 @@ void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, 
   // fraction a step) this step's dt: the strain rate of rate-dependent J2 facesheets.
   if (stage == mpm::GridStage::force) far_field_.internal_force(force_, dt);
   for (const Tie& t : ties_) {
-    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);  // requested: active
+    // Requested, so active on one rank; spread, on the owner and wherever points write it.
+    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
+    if (!node) continue;
     const double wm = t.weight * m[t.node];
     const std::size_t i = 3 * t.node;
     switch (stage) {
@@ -111,14 +121,16 @@ void FarFieldCoupling::add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, 
 
 void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, double dt) {
   // After update_grid: p = v_I at the start of the step, f = dv_I over it.
+  read_ties(grid);
   std::fill(increment_.begin(), increment_.end(), 0.0);
   std::fill(nodal_velocity_.begin(), nodal_velocity_.end(), 0.0);
-  for (const Tie& t : ties_) {
-    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);
+  for (std::size_t k = 0; k < ties_.size(); ++k) {
+    const Tie& t = ties_[k];
+    const double* v = &tie_values_[6 * k];  // v_I, dv_I
     const std::size_t i = 3 * t.node;
     for (int d = 0; d < 3; ++d) {
-      increment_[i + d] += t.weight * node->f[d];
-      nodal_velocity_[i + d] += t.weight * (node->p[d] + node->f[d]);
+      increment_[i + d] += t.weight * v[3 + d];
+      nodal_velocity_[i + d] += t.weight * (v[d] + v[3 + d]);
     }
   }
   const auto m = far_field_.lumped_mass();
@@ -143,6 +155,34 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
         u[i] += dt * v[i];
       }
     }
+  }
+}
+
+void FarFieldCoupling::read_ties(const mpm::SparseGrid& grid) {
+  tie_values_.resize(6 * ties_.size());
+  const int me = ranks_ ? ranks_->comm->rank() : 0;
+  std::vector<int> owner(ties_.size(), me);
+  if (ranks_)
+    for (std::size_t k = 0; k < ties_.size(); ++k) owner[k] = ranks_->owner(block_of(ties_[k]));
+  std::vector<double> mine;  // this rank's ties' values, in tie order
+  for (std::size_t k = 0; k < ties_.size(); ++k) {
+    if (owner[k] != me) continue;
+    const Tie& t = ties_[k];
+    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);  // requested: active
+    for (int d = 0; d < 3; ++d) mine.push_back(node->p[d]);
+    for (int d = 0; d < 3; ++d) mine.push_back(node->f[d]);
+  }
+  if (!ranks_) {
+    tie_values_ = std::move(mine);
+    return;
+  }
+  const auto all = ranks_->comm->all_gather(mine);
+  std::vector<std::size_t> at(all.size(), 0);
+  for (std::size_t k = 0; k < ties_.size(); ++k) {
+    const auto& from = all.at(static_cast<std::size_t>(owner[k]));
+    std::size_t& next = at[static_cast<std::size_t>(owner[k])];
+    std::copy_n(&from.at(next), 6, &tie_values_[6 * k]);
+    next += 6;
   }
 }
 

@@ -28,8 +28,15 @@
 // The far field's stable step (its element bound, times `safety`; with finite strain reduced by
 // the current stretch) enters the solver's choice of time step at every step, so both sides take
 // the smaller of the two limits.
+//
+// Spread over ranks, every rank holds the whole far field and steps it alike (it is small beside
+// the zone: that is what it is for). Each rank adds the tied nodes to the copies of the grid
+// blocks it holds and requests the blocks it owns; after the grid update, each tie's (v_I, dv_I)
+// is read on the rank owning its block and gathered to every rank, which sums them per node in
+// tie order, as one rank does: every rank's far field keeps the one-rank bits.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "fem/far_field.hpp"
@@ -48,6 +55,7 @@ class FarFieldCoupling : public mpm::GridCoupling {
   FarFieldCoupling(fem::FarField& far_field, const mpm::GridGeometry& grid,
                    const InterfaceBand& band, double flip = 1.0, double safety = 0.9);
 
+  void spread(const mpm::GridRanks& ranks) override;
   void request_blocks(std::vector<std::uint64_t>& keys) const override;
   void add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double time, double dt) override;
   void take_from_grid(const mpm::SparseGrid& grid, double time, double dt) override;
@@ -94,7 +102,16 @@ class FarFieldCoupling : public mpm::GridCoupling {
   bool growing_ = false;
   double converted_ = 0.0;  // J
   double flip_, safety_;
+  // Per tie: the nodal velocity at the start of the step and its increment (6 values), read
+  // from the rank owning the tie's block when spread.
+  void read_ties(const mpm::SparseGrid& grid);
+  std::uint64_t block_of(const Tie& t) const {
+    return mpm::SparseGrid::key_of_node(t.grid[0], t.grid[1], t.grid[2]);
+  }
+
+  std::optional<mpm::GridRanks> ranks_;
   std::vector<Tie> ties_;                           // grouped by far-field node
+  std::vector<double> tie_values_;                  // 6 per tie: v_I, dv_I
   std::vector<std::uint8_t> tied_;                  // per far-field node
   std::vector<double> force_;                       // -K u^n, 3 per node
   std::vector<double> increment_, nodal_velocity_;  // per node: sum w dv_I, sum w (v_I + dv_I)

@@ -10,13 +10,22 @@
 //   4. stable_time_step     when the next time step is chosen
 // and two for the run around the step: energy() enters the solver's energy balance, state()
 // names the arrays a checkpoint saves and a resumed run fills back.
+//
+// In a run spread over ranks (solver_ranks.cpp) every rank holds the whole coupled model, alike,
+// and the solver hands it the ranks (spread()): each grid block has one owner rank, which holds
+// the block at every stage, and every rank holding a copy of a block holds the same node values
+// (the one-rank bits). So a model adds to every copy it finds, requests only the blocks its rank
+// owns, and reads a node from its owner.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "mpm/communicator.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/types.hpp"
 
@@ -34,9 +43,22 @@ struct CoupledEnergy {
   Vec3 momentum{};                     // kg m/s
 };
 
+// The ranks of a spread run, as a coupled model sees them.
+struct GridRanks {
+  Communicator* comm = nullptr;
+  // The rank owning the grid block with this key (SparseGrid::block_key), under the partition
+  // of the step under way: the same answer on every rank.
+  std::function<int(std::uint64_t block_key)> owner;
+};
+
 class GridCoupling {
  public:
   virtual ~GridCoupling() = default;
+  // Called once by a solver spread over ranks, before its first step. A model that does not
+  // say how it is spread refuses.
+  virtual void spread(const GridRanks& /*ranks*/) {
+    throw std::invalid_argument("this coupled model cannot be spread over ranks");
+  }
   virtual void request_blocks(std::vector<std::uint64_t>& /*keys*/) const {}
   virtual void add_to_grid(SparseGrid& /*grid*/, GridStage /*stage*/, double /*time*/,
                            double /*dt*/) {}

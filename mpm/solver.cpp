@@ -163,11 +163,7 @@ void Solver::sort_by_material_and_block() {
 void Solver::step(double max_dt) {
   announce(Command::step, max_dt);
   dt_ = std::min(state_.next_dt, max_dt);
-  if (distributed()) {
-    if (!couplings_.empty())
-      throw SolverError("a run spread over ranks cannot take coupled models (a far field) yet");
-    share_points();
-  }
+  if (distributed()) share_points();
   bin_particles();
   if (settings_.reorder_interval > 0 && state_.step % settings_.reorder_interval == 0 &&
       state_.step > 0) {

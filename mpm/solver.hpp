@@ -124,14 +124,15 @@ class Solver {
   const SolverSettings& settings() const { return settings_; }
   const SparseGrid& grid() const { return grid_; }
   const BodyContact* contact() const { return contact_.get(); }  // nullptr without contact
-  void add_coupling(GridCoupling* coupling) { couplings_.push_back(coupling); }
+  // A coupled model; in a spread run (before or after distribute()) it is handed the ranks.
+  void add_coupling(GridCoupling* coupling);
   const std::vector<GridCoupling*>& couplings() const { return couplings_; }
 
   // Spreads the run over the ranks of `comm` (solver_ranks.cpp), before initialise() or restore().
   // From then on initialise, restore, step, energy, take_removal_events and gather_to_root are
   // collective: every rank calls them alike. The points may start on any ranks (each once); the
-  // first step sends each to the rank owning its group. Refuses what a spread run cannot do yet
-  // (contact, the node-averaged dilatation; coupled models are refused by step()).
+  // first step sends each to the rank owning its group. Coupled models are handed the ranks
+  // (GridCoupling::spread).
   void distribute(Communicator* comm);
   bool distributed() const { return comm_ != nullptr && comm_->size() > 1; }
   int rank() const { return comm_ ? comm_->rank() : 0; }
@@ -247,6 +248,7 @@ class Solver {
   double contact_work_over_ranks(NodalVelocity which) const;
   std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
+  GridRanks grid_ranks();
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
   enum class Command {
     stop,

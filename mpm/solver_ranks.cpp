@@ -32,6 +32,20 @@ void Solver::distribute(Communicator* comm) {
     shared1_.combine = [this](int components, const SharedBlocks::Target& target) {
       combine_shared(shared1_, contact_->grid(), components, target);
     };
+  for (auto* c : couplings_) c->spread(grid_ranks());
+}
+
+void Solver::add_coupling(GridCoupling* coupling) {
+  if (distributed()) coupling->spread(grid_ranks());  // may refuse: then it is not added
+  couplings_.push_back(coupling);
+}
+
+// A block belongs to the rank owning its group (the 2 x 2 x 2 blocks a group's points own); that
+// rank's groups write it (writers_elsewhere), so it is always among the ranks holding it.
+GridRanks Solver::grid_ranks() {
+  return {comm_, [this](std::uint64_t block_key) {
+            return partition_.rank_of(group_of_block(block_key));
+          }};
 }
 
 // Each point to the rank owning its group. The partition is cut on the first step, and anew when

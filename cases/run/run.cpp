@@ -159,9 +159,6 @@ int SceneRun::build() {
   solver_ = make_solver(scene_);
   try {
     if (options_.ranks) {
-      if (scene_.far_field)
-        throw std::invalid_argument(
-            "a far field ([far_field]) cannot be spread over ranks yet: run this scene on one");
       solver_->distribute(options_.ranks);
       solver_->lead();
     }
@@ -714,9 +711,11 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
   std::signal(SIGTERM, SIG_IGN);
   if (options.threads > 0) omp_set_num_threads(options.threads);
   std::unique_ptr<mpm::Solver> solver;
+  std::unique_ptr<Hybrid> hybrid;  // every rank steps the whole far field (rank 0 writes it)
   try {
     solver = make_solver(scene);
     solver->distribute(options.ranks);
+    hybrid = make_hybrid(scene, *solver);
     // Its share of the points (rank 0 samples its own alike); a resumed run reads its share of
     // the checkpoint instead, when rank 0 restores it.
     if (!options.resume)

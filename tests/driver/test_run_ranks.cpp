@@ -1,8 +1,7 @@
 // `mpirun -np N hvi run`: one run spread over the ranks of an MPI job (mpm/solver_ranks.cpp) writes
 // the bytes a run on one rank writes: every snapshot file, particles.xmf and energy.csv, also when
 // it is stopped on 3 ranks and resumed on 2; also with the node-averaged dilatation and contact.
-// What a spread run cannot do yet (a far field) is refused before anything runs. Under mpirun,
-// oversubscribed (this machine has 2 cores).
+// Also a hybrid's far field. Under mpirun, oversubscribed (this machine has 2 cores).
 #include <sys/wait.h>
 
 #include <cmath>
@@ -114,11 +113,53 @@ TEST(RunOnRanks, NodeAverageAndContactWriteTheOneRankRunsBytes) {
   expect_same_output(one, spread, 4);
 }
 
+// A hybrid ([far_field]): every rank steps the whole far field, and each tie reads its grid node
+// on the rank owning the node's block (coupling/far_field_coupling.hpp). With failing J2
+// facesheets and a failing core (their plastic state and damage are in the checkpoint), a run
+// stopped on 3 ranks and resumed on 2 writes the one-rank run's bytes: snapshots, energy.csv,
+// probes.csv and every far-field file.
+const std::string small_hybrid =
+    std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml";
+const std::string failing_hybrid =
+    " --set far_field.plasticity=failing --set far_field.core=failing"
+    " --set material.aluminium.library=Al5052 --set material.aluminium.strength=johnson-cook"
+    " --set material.aluminium.damage=johnson-cook --set body.ball.velocity=[0,0,-2000]";
+
+TEST(RunOnRanks, AHybridWritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
+  if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const fs::path one = scratch("ranks_hybrid_one"), spread = scratch("ranks_hybrid_spread");
+  const fs::path log = scratch("ranks_hybrid_log.txt");
+  const std::string args = " --threads 1" + failing_hybrid;
+  ASSERT_EQ(run("run " + small_hybrid + " --out " + one.string() + args), 0);
+  ASSERT_EQ(
+      on_ranks(
+          3, "run " + small_hybrid + " --out " + spread.string() + args + " --set run.max_steps=60",
+          log),
+      0)
+      << read(log);
+  ASSERT_EQ(
+      on_ranks(2, "run --resume " + spread.string() + " --threads 1 --set run.max_steps=0", log), 0)
+      << read(log);
+  expect_same_output(one, spread);
+  EXPECT_TRUE(read(one / "probes.csv") == read(spread / "probes.csv"));
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(one / "far_field")) {
+    EXPECT_TRUE(read(entry.path()) == read(spread / "far_field" / entry.path().filename()))
+        << entry.path().filename() << " differs";
+    ++files;
+  }
+  EXPECT_EQ(files, 10);  // 5 snapshots: a VTU file and a nodes file each
+  EXPECT_GT(summary_number(one, "far_field_max_plastic_strain"), 0.0);  // the far field yielded
+}
+
+// What a spread run cannot do yet (a far-field zone that grows) is refused before anything runs.
 TEST(RunOnRanks, RefusesWhatASpreadRunCannotDoYet) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path out = scratch("ranks_refused"), log = scratch("ranks_refused_log.txt");
-  const std::string hybrid = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml";
-  EXPECT_EQ(on_ranks(2, "run " + hybrid + " --out " + out.string(), log), 2);
+  const std::string growing = failing_hybrid + " --set 'grid.upper=[\"7 mm\",\"7 mm\",\"3 mm\"]'" +
+                              " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]'" +
+                              " --set 'far_field.zone.grow.upper=[\"6 mm\",\"6 mm\"]'";
+  EXPECT_EQ(on_ranks(2, "run " + small_hybrid + " --out " + out.string() + growing, log), 2);
   EXPECT_NE(read(log).find("cannot be spread over ranks yet"), std::string::npos) << read(log);
   EXPECT_FALSE(fs::exists(out / "snapshots"));
 }
