@@ -81,9 +81,6 @@ void FarFieldCoupling::retie(const InterfaceBand& band) {
 }
 
 void FarFieldCoupling::spread(const mpm::GridRanks& ranks) {
-  if (growing_)
-    throw std::invalid_argument(
-        "a far-field zone that grows ([far_field.zone.grow]) cannot be spread over ranks yet");
   ranks_ = ranks;
 }
 

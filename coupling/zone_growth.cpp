@@ -153,8 +153,7 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
   // 1. The new points, from the samples.
   mpm::Particles& P = solver.particles();
   const std::size_t first = P.size();
-  std::int64_t next_id = 0;
-  for (const auto id : P.id) next_id = std::max(next_id, id + 1);
+  const std::int64_t next_id = solver.next_point_id();  // over every rank
   report.first_id = next_id;
   P.resize(first + n);
   std::vector<double>* half_width = P.has_field(mpm::Solver::half_width_field)
@@ -239,6 +238,15 @@ TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, m
     }
     report.point_kinetic += 0.5 * P.mass[p] * v2;
     report.point_energy += P.mass[p] * (0.5 * v2 + P.internal_energy[p]);
+  }
+
+  // Spread over ranks, the new points are one rank's (rank 0's): every rank books what it holds.
+  if (mpm::Communicator* comm = solver.communicator()) {
+    std::vector<double> held{report.point_energy, report.point_kinetic, report.momentum_correction};
+    comm->broadcast(held);
+    report.point_energy = held.at(0);
+    report.point_kinetic = held.at(1);
+    report.momentum_correction = held.at(2);
   }
 
   // 4. Energy: the mismatch is booked as converted, in the far field's internal energy.

@@ -143,7 +143,8 @@ struct LayerTakeover {
 
 // `layers[l]`: how points of far-field layer l start. Throws std::invalid_argument when a point of
 // a walls layer has no wall direction, fem's and the coupling's errors, or mpm::SolverError for
-// a point that falls outside the far field or the grid.
+// a point that falls outside the far field or the grid. Collective in a run spread over ranks:
+// every rank takes the cells out of its far field, and the points are rank 0's (none elsewhere).
 TakeoverReport take_over(FarFieldCoupling& coupling, fem::FarField& far_field, mpm::Solver& solver,
                          const NewPoints& points, const InterfaceBand& band,
                          const std::vector<LayerTakeover>& layers);

@@ -86,7 +86,6 @@ void Solver::initialise() {
 }
 
 void Solver::adopt_particles(std::size_t first) {
-  if (distributed()) throw SolverError("points cannot be adopted by a run spread over ranks yet");
   const std::size_t n = particles_.size();
   for (std::size_t p = first; p < n; ++p)
     if (!geometry_.contains(&particles_.position[3 * p]))
@@ -106,10 +105,17 @@ void Solver::adopt_particles(std::size_t first) {
     materials_[m]->initialise(particles_, {begin, end});
     signal = std::max(signal, materials_[m]->max_signal_speed(particles_, {begin, end}));
   }
-  max_signal_speed_ = signal;
+  max_signal_speed_ = max_over_ranks(signal);
   bin_particles();
   sort_by_material_and_block();
+  count_points();
   choose_time_step();
+}
+
+std::int64_t Solver::next_point_id() const {
+  std::int64_t next = 0;
+  for (const auto id : particles_.id) next = std::max(next, id + 1);
+  return static_cast<std::int64_t>(max_over_ranks(static_cast<double>(next)));
 }
 
 void Solver::restore(const SolverState& state) {

@@ -153,11 +153,13 @@ class Solver {
     std::function<void()> restore;
     std::function<void(double what)> write;
     std::function<void()> measure;
+    std::function<void()> grow;  // a hybrid's zone grows (or not) between two steps
   };
   void lead() { leading_ = true; }
   void follow(const FollowerHooks& hooks);
   void announce_write(double what) const { announce(Command::write, what); }
   void announce_measure() const { announce(Command::measure); }
+  void announce_grow() const { announce(Command::grow); }
   // Collective: pairs (a, b), one after the other, each replaced by the largest of every rank's,
   // (a, b) ordered by a, then b. The identity on one rank.
   std::vector<double> max_pairs_over_ranks(std::vector<double> pairs) const;
@@ -191,7 +193,12 @@ class Solver {
   // other than zero; GIMP half-widths, else V0^(1/3) / 2): checks they lie in the grid, initialises
   // their materials' state as initialise() does, groups the particles by material again and
   // chooses the next time step with them. Throws SolverError naming a particle outside the grid.
+  // Collective in a spread run: each rank adopts those it appended (none on most), and the next
+  // step sends them to the ranks owning their groups.
   void adopt_particles(std::size_t first);
+  // Collective: one more than the largest point id on any rank (0 without points), the first id
+  // of points added between steps.
+  std::int64_t next_point_id() const;
 
   double time() const { return state_.time; }
   std::int64_t step_count() const { return state_.step; }
@@ -261,7 +268,8 @@ class Solver {
     pressure,
     write,
     positions,
-    measure
+    measure,
+    grow
   };
   void announce(Command command, double argument = 0.0) const;
 

@@ -333,6 +333,9 @@ void Solver::follow(const FollowerHooks& hooks) {
       case Command::measure:
         hooks.measure();
         break;
+      case Command::grow:
+        hooks.grow();
+        break;
     }
   }
 }

@@ -161,7 +161,7 @@ void Hybrid::write_snapshot(const fs::path& dir, std::int64_t step, double time)
   nodes.write_attribute("step", step);
 }
 
-void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
+void Hybrid::restore_zone() {
   if (growth_ && coupling_->band().zone != spec_.zone) {
     // The checkpoint gave the band of the grown zone: the far field gives up its cells again.
     spec_.zone = coupling_->band().zone;
@@ -169,6 +169,10 @@ void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
     far_field_->remove_cells(band.zone);
     coupling_->retie(band);
   }
+}
+
+void Hybrid::resume(const fs::path& dir, std::int64_t last_step) {
+  restore_zone();
   // far_field.pvd lists <DataSet timestep="t" ... file="far_field/far_field_<step>.vtu"/>.
   std::ifstream in(dir / "far_field.pvd");
   const std::regex entry(R"re(timestep="([^"]+)".*file="(far_field/far_field_(\d+)\.vtu)")re");
@@ -225,6 +229,11 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
   // The panel's points damaged at a side, or the far field's own cells torn just beyond it.
   std::array<bool, 4> reached = coupling::sides_reached(solver.particles(), bodies, zone, *growth_);
+  if (mpm::Communicator* comm = solver.communicator()) {  // the points of every rank
+    const std::vector<double> mine(reached.begin(), reached.end());
+    for (const auto& from : comm->all_gather(mine))
+      for (int side = 0; side < 4; ++side) reached[side] = reached[side] || from.at(side) != 0.0;
+  }
   const std::array<bool, 4> outside = coupling::sides_reached_from_outside(
       far_field_->damaged_cell_centres(growth_->damage), zone, *growth_);
   for (int side = 0; side < 4; ++side) reached[side] = reached[side] || outside[side];
@@ -237,7 +246,9 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   }
   const std::array<double, 4> grown = coupling::grown_zone(reached, zone, *growth_);
   if (grown == zone) return std::nullopt;
-  coupling::NewPoints points = sample_ring(coupling::ring(zone, grown), solver);
+  // Spread over ranks, rank 0 adds them all; the next step sends each to its rank.
+  coupling::NewPoints points =
+      solver.rank() == 0 ? sample_ring(coupling::ring(zone, grown), solver) : coupling::NewPoints{};
   spec_.zone = grown;
   // The far field's layers: rear, core, front; the facesheets carry their stress over, the
   // homogenised core's points take its walls' (coupling/zone_growth.hpp).

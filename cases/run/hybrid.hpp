@@ -42,15 +42,19 @@ class Hybrid {
   // node order; attributes time and step.
   static std::string nodes_file(std::int64_t step);
   void write_snapshot(const std::filesystem::path& dir, std::int64_t step, double time);
-  // A resumed run keeps the snapshots up to `last_step` (read back from far_field.pvd). A zone that
-  // grew (its band read back from the checkpoint) takes its cells out of the far field again.
+  // A resumed run keeps the snapshots up to `last_step` (read back from far_field.pvd), and
+  // restores the zone.
   void resume(const std::filesystem::path& dir, std::int64_t last_step);
+  // A zone that grew (its band read back from the checkpoint) takes its cells out of the far field
+  // again (every rank of a spread run; rank 0 in resume()).
+  void restore_zone();
 
   // A zone that grows ([far_field.zone.grow]): between two steps, grows the zone where the panel's
   // damage reaches its edge (coupling::grown_zone): the panel's three bodies are sampled over the
   // ring it adds, as at the start (the lattice anchored at the grid, the thin-wall model, the
   // refinement zones), and take over the far field's cells there (coupling::take_over). Returns
-  // what was taken over, or nothing when the zone stays.
+  // what was taken over, or nothing when the zone stays. Collective in a run spread over ranks:
+  // the damage of every rank's points counts, and rank 0 adds the new points.
   bool growing() const { return growth_.has_value(); }
   // With a zone that grows, the points of the start take their positions as their undeformed
   // ones (coupling::reference_position_field); call it once they are all added.

@@ -364,6 +364,7 @@ void SceneRun::step() {
 void SceneRun::grow_zone() {
   mpm::Solver& s = *solver_;
   auto t = s.timer().scope("grow the MPM zone");
+  s.announce_grow();
   const std::array<bool, 4> held_before = hybrid_->held_at_limit().sides;
   const auto r = hybrid_->grow(s);
   if (hybrid_->held_at_limit().sides != held_before) {
@@ -718,9 +719,11 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
     hybrid = make_hybrid(scene, *solver);
     // Its share of the points (rank 0 samples its own alike); a resumed run reads its share of
     // the checkpoint instead, when rank 0 restores it.
-    if (!options.resume)
+    if (!options.resume) {
       add_bodies(scene, *solver, options.max_memory, nullptr,
                  {options.ranks->rank(), options.ranks->size()});
+      if (hybrid) hybrid->record_reference_positions(*solver);
+    }
   } catch (const std::exception&) {  // rank 0 refuses the same scene and says why
     solver.reset();
   }
@@ -745,8 +748,12 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
     const auto measure = [&] {
       (void)solver->max_pairs_over_ranks(point_extrema(scene.measures, *solver));
     };
-    solver->follow({[&] { mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver); },
-                    write, measure});
+    const auto restore = [&] {
+      mpm::io::read_checkpoint(options.out / "checkpoint.h5", *solver);
+      if (hybrid) hybrid->restore_zone();
+    };
+    const auto grow = [&] { (void)hybrid->grow(*solver); };
+    solver->follow({restore, write, measure, grow});
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi: rank {}: the run failed: {}\n", options.ranks->rank(), e.what());
     std::fflush(nullptr);

@@ -1,7 +1,8 @@
 // `mpirun -np N hvi run`: one run spread over the ranks of an MPI job (mpm/solver_ranks.cpp) writes
 // the bytes a run on one rank writes: every snapshot file, particles.xmf and energy.csv, also when
 // it is stopped on 3 ranks and resumed on 2; also with the node-averaged dilatation and contact.
-// Also a hybrid's far field. Under mpirun, oversubscribed (this machine has 2 cores).
+// Also a hybrid's far field, and a zone that grows over it. Under mpirun, oversubscribed (this
+// machine has 2 cores).
 #include <sys/wait.h>
 
 #include <cmath>
@@ -125,6 +126,21 @@ const std::string failing_hybrid =
     " --set material.aluminium.library=Al5052 --set material.aluminium.strength=johnson-cook"
     " --set material.aluminium.damage=johnson-cook --set body.ball.velocity=[0,0,-2000]";
 
+// The snapshots, energy.csv, probes.csv and every far-field file of 5 snapshots (a VTU file and a
+// nodes file each).
+void expect_same_far_field_output(const fs::path& one, const fs::path& spread) {
+  expect_same_output(one, spread);
+  EXPECT_TRUE(read(one / "probes.csv") == read(spread / "probes.csv"));
+  EXPECT_FALSE(read(one / "probes.csv").empty());
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(one / "far_field")) {
+    EXPECT_TRUE(read(entry.path()) == read(spread / "far_field" / entry.path().filename()))
+        << entry.path().filename() << " differs";
+    ++files;
+  }
+  EXPECT_EQ(files, 10);
+}
+
 TEST(RunOnRanks, AHybridWritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path one = scratch("ranks_hybrid_one"), spread = scratch("ranks_hybrid_spread");
@@ -140,28 +156,40 @@ TEST(RunOnRanks, AHybridWritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
   ASSERT_EQ(
       on_ranks(2, "run --resume " + spread.string() + " --threads 1 --set run.max_steps=0", log), 0)
       << read(log);
-  expect_same_output(one, spread);
-  EXPECT_TRUE(read(one / "probes.csv") == read(spread / "probes.csv"));
-  int files = 0;
-  for (const auto& entry : fs::directory_iterator(one / "far_field")) {
-    EXPECT_TRUE(read(entry.path()) == read(spread / "far_field" / entry.path().filename()))
-        << entry.path().filename() << " differs";
-    ++files;
-  }
-  EXPECT_EQ(files, 10);  // 5 snapshots: a VTU file and a nodes file each
+  expect_same_far_field_output(one, spread);
   EXPECT_GT(summary_number(one, "far_field_max_plastic_strain"), 0.0);  // the far field yielded
 }
 
-// What a spread run cannot do yet (a far-field zone that grows) is refused before anything runs.
-TEST(RunOnRanks, RefusesWhatASpreadRunCannotDoYet) {
+// A zone that grows over the far field ([far_field.zone.grow], as tests/driver/test_cli_hybrid's
+// growing hybrid: from 3 to 6 mm by 1 mm steps, its probe on a node the zone takes over): the
+// damage of every rank's points counts, rank 0 adds the new points, every rank takes the cells
+// out of its far field. Stopped on 3 ranks at step 41, where the zone first grows, and resumed on
+// 2 (the checkpoint holds the grown zone), it writes the one-rank run's bytes.
+TEST(RunOnRanks, AGrowingZoneWritesTheOneRankRunsBytes) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
-  const fs::path out = scratch("ranks_refused"), log = scratch("ranks_refused_log.txt");
-  const std::string growing = failing_hybrid + " --set 'grid.upper=[\"7 mm\",\"7 mm\",\"3 mm\"]'" +
-                              " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]'" +
-                              " --set 'far_field.zone.grow.upper=[\"6 mm\",\"6 mm\"]'";
-  EXPECT_EQ(on_ranks(2, "run " + small_hybrid + " --out " + out.string() + growing, log), 2);
-  EXPECT_NE(read(log).find("cannot be spread over ranks yet"), std::string::npos) << read(log);
-  EXPECT_FALSE(fs::exists(out / "snapshots"));
+  const fs::path one = scratch("ranks_growing_one"), spread = scratch("ranks_growing_spread");
+  const fs::path log = scratch("ranks_growing_log.txt");
+  const std::string args =
+      " --threads 1" + failing_hybrid + " --set 'grid.upper=[\"7 mm\",\"7 mm\",\"3 mm\"]'" +
+      " --set 'far_field.zone.grow.lower=[\"0 mm\",\"0 mm\"]'" +
+      " --set 'far_field.zone.grow.upper=[\"6 mm\",\"6 mm\"]'" +
+      " --set 'far_field.zone.grow.step=1 mm' --set 'far_field.zone.grow.margin=1 mm'" +
+      " --set 'measure.rear_deflection.point=[\"5 mm\",\"0 mm\",\"-4 mm\"]'";
+  ASSERT_EQ(run("run " + small_hybrid + " --out " + one.string() + args), 0);
+  ASSERT_EQ(
+      on_ranks(
+          3, "run " + small_hybrid + " --out " + spread.string() + args + " --set run.max_steps=41",
+          log),
+      0)
+      << read(log);
+  ASSERT_EQ(
+      on_ranks(2, "run --resume " + spread.string() + " --threads 1 --set run.max_steps=0", log), 0)
+      << read(log);
+  EXPECT_NE(read(log).find("the MPM zone grew to [0, 6] x [0, 6] mm"), std::string::npos)
+      << read(log);
+  expect_same_far_field_output(one, spread);
+  EXPECT_EQ(summary_number(one, "far_field_elements_taken_over"),
+            summary_number(spread, "far_field_elements_taken_over"));
 }
 
 }  // namespace
