@@ -34,6 +34,25 @@ int on_ranks(int ranks, const std::string& args, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// `scene` run with `args` into `out` on 3 ranks until step `stop`, then resumed on 2 ranks of
+// `threads` threads to its end; false with the log's text on the failing launch.
+testing::AssertionResult stopped_on_three_resumed_on_two(const std::string& scene,
+                                                         const std::string& args,
+                                                         const fs::path& out, int stop, int threads,
+                                                         const fs::path& log) {
+  if (on_ranks(3,
+               "run " + scene + " --out " + out.string() + args +
+                   " --set run.max_steps=" + std::to_string(stop),
+               log) != 0)
+    return testing::AssertionFailure() << "on 3 ranks: " << read(log);
+  if (on_ranks(2,
+               "run --resume " + out.string() + " --threads " + std::to_string(threads) +
+                   " --set run.max_steps=0",
+               log) != 0)
+    return testing::AssertionFailure() << "resumed on 2 ranks: " << read(log);
+  return testing::AssertionSuccess();
+}
+
 TEST(RunOnRanks, WritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
   if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
   const fs::path one = scratch("ranks_one"), spread = scratch("ranks_spread");
@@ -117,8 +136,8 @@ TEST(RunOnRanks, NodeAverageAndContactWriteTheOneRankRunsBytes) {
 // A hybrid ([far_field]): every rank steps the whole far field, and each tie reads its grid node
 // on the rank owning the node's block (coupling/far_field_coupling.hpp). With failing J2
 // facesheets and a failing core (their plastic state and damage are in the checkpoint), a run
-// stopped on 3 ranks and resumed on 2 writes the one-rank run's bytes: snapshots, energy.csv,
-// probes.csv and every far-field file.
+// stopped on 3 ranks of 1 thread and resumed on 2 ranks of 2 threads writes the one-thread,
+// one-rank run's bytes: snapshots, energy.csv, probes.csv and every far-field file.
 const std::string small_hybrid =
     std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_hybrid.toml";
 const std::string failing_hybrid =
@@ -147,15 +166,9 @@ TEST(RunOnRanks, AHybridWritesTheOneRankRunsBytesAndResumesOnAnotherRankCount) {
   const fs::path log = scratch("ranks_hybrid_log.txt");
   const std::string args = " --threads 1" + failing_hybrid;
   ASSERT_EQ(run("run " + small_hybrid + " --out " + one.string() + args), 0);
-  ASSERT_EQ(
-      on_ranks(
-          3, "run " + small_hybrid + " --out " + spread.string() + args + " --set run.max_steps=60",
-          log),
-      0)
-      << read(log);
-  ASSERT_EQ(
-      on_ranks(2, "run --resume " + spread.string() + " --threads 1 --set run.max_steps=0", log), 0)
-      << read(log);
+  ASSERT_TRUE(stopped_on_three_resumed_on_two(small_hybrid, args, spread, 60, 2, log));
+  EXPECT_NE(read(log).find("particles, 2 threads)"), std::string::npos) << read(log);
+  EXPECT_NE(read(log).find("ranks: 2;"), std::string::npos) << read(log);
   expect_same_far_field_output(one, spread);
   EXPECT_GT(summary_number(one, "far_field_max_plastic_strain"), 0.0);  // the far field yielded
 }
@@ -176,15 +189,7 @@ TEST(RunOnRanks, AGrowingZoneWritesTheOneRankRunsBytes) {
       " --set 'far_field.zone.grow.step=1 mm' --set 'far_field.zone.grow.margin=1 mm'" +
       " --set 'measure.rear_deflection.point=[\"5 mm\",\"0 mm\",\"-4 mm\"]'";
   ASSERT_EQ(run("run " + small_hybrid + " --out " + one.string() + args), 0);
-  ASSERT_EQ(
-      on_ranks(
-          3, "run " + small_hybrid + " --out " + spread.string() + args + " --set run.max_steps=41",
-          log),
-      0)
-      << read(log);
-  ASSERT_EQ(
-      on_ranks(2, "run --resume " + spread.string() + " --threads 1 --set run.max_steps=0", log), 0)
-      << read(log);
+  ASSERT_TRUE(stopped_on_three_resumed_on_two(small_hybrid, args, spread, 41, 1, log));
   EXPECT_NE(read(log).find("the MPM zone grew to [0, 6] x [0, 6] mm"), std::string::npos)
       << read(log);
   expect_same_far_field_output(one, spread);
