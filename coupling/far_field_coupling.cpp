@@ -156,30 +156,30 @@ void FarFieldCoupling::take_from_grid(const mpm::SparseGrid& grid, double, doubl
 }
 
 void FarFieldCoupling::read_ties(const mpm::SparseGrid& grid) {
+  const auto read = [&](const Tie& t, double* to) {
+    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);  // requested: active
+    for (int d = 0; d < 3; ++d) to[d] = node->p[d], to[3 + d] = node->f[d];
+  };
   tie_values_.resize(6 * ties_.size());
-  const int me = ranks_ ? ranks_->comm->rank() : 0;
-  std::vector<int> owner(ties_.size(), me);
-  if (ranks_)
-    for (std::size_t k = 0; k < ties_.size(); ++k) owner[k] = ranks_->owner(block_of(ties_[k]));
+  if (!ranks_) {
+    for (std::size_t k = 0; k < ties_.size(); ++k) read(ties_[k], &tie_values_[6 * k]);
+    return;
+  }
+  const int me = ranks_->comm->rank();
+  tie_owner_.resize(ties_.size());
   std::vector<double> mine;  // this rank's ties' values, in tie order
   for (std::size_t k = 0; k < ties_.size(); ++k) {
-    if (owner[k] != me) continue;
-    const Tie& t = ties_[k];
-    const auto node = grid.node(t.grid[0], t.grid[1], t.grid[2]);  // requested: active
-    for (int d = 0; d < 3; ++d) mine.push_back(node->p[d]);
-    for (int d = 0; d < 3; ++d) mine.push_back(node->f[d]);
-  }
-  if (!ranks_) {
-    tie_values_ = std::move(mine);
-    return;
+    tie_owner_[k] = ranks_->owner(block_of(ties_[k]));
+    if (tie_owner_[k] != me) continue;
+    mine.resize(mine.size() + 6);
+    read(ties_[k], &mine[mine.size() - 6]);
   }
   const auto all = ranks_->comm->all_gather(mine);
   std::vector<std::size_t> at(all.size(), 0);
   for (std::size_t k = 0; k < ties_.size(); ++k) {
-    const auto& from = all.at(static_cast<std::size_t>(owner[k]));
-    std::size_t& next = at[static_cast<std::size_t>(owner[k])];
-    std::copy_n(&from.at(next), 6, &tie_values_[6 * k]);
-    next += 6;
+    const auto r = static_cast<std::size_t>(tie_owner_[k]);
+    std::copy_n(&all.at(r).at(at[r]), 6, &tie_values_[6 * k]);
+    at[r] += 6;
   }
 }
 

@@ -112,6 +112,7 @@ class FarFieldCoupling : public mpm::GridCoupling {
   std::optional<mpm::GridRanks> ranks_;
   std::vector<Tie> ties_;                           // grouped by far-field node
   std::vector<double> tie_values_;                  // 6 per tie: v_I, dv_I
+  std::vector<int> tie_owner_;                      // spread: the rank owning each tie's block
   std::vector<std::uint8_t> tied_;                  // per far-field node
   std::vector<double> force_;                       // -K u^n, 3 per node
   std::vector<double> increment_, nodal_velocity_;  // per node: sum w dv_I, sum w (v_I + dv_I)
