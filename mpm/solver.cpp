@@ -336,13 +336,14 @@ void Solver::compute_velocity_gradient(NodalVelocity which) {
 void Solver::update_stress() {
   const StressContext context{dt_, state_.time, state_.step, &timer_};
   double signal = 0.0;
-  for (std::size_t m = 0; m < materials_.size(); ++m) {
+  std::string bad;  // the first failing point's, in material order
+  for (std::size_t m = 0; m < materials_.size() && bad.empty(); ++m) {
     if (ranges_[m].size() == 0) continue;
     const StressUpdate r = materials_[m]->update_stress(particles_, ranges_[m], context);
-    if (r.bad_particle >= 0) fail(static_cast<std::size_t>(r.bad_particle), r.problem);
+    if (r.bad_particle >= 0) bad = failure(static_cast<std::size_t>(r.bad_particle), r.problem);
     signal = std::max(signal, r.max_signal_speed);
   }
-  max_signal_speed_ = max_over_ranks(signal);
+  max_signal_speed_ = agree_on_failure(bad, 0.0, signal);  // the largest over the ranks
 }
 
 // cpGIMP: the axis-aligned domain follows the stretch along each axis, a_d <- a_d (1 + dt L_dd),
@@ -390,10 +391,15 @@ void Solver::move_particles() {
 void Solver::remove_escaped_particles() {
   if (escaped_.empty() && !distributed()) return;
   auto t = timer_.scope("remove escaped");
+  std::string bad;
   for (const std::uint32_t p : escaped_) {
     const double* x = &particles_.position[3 * p];
-    if (!std::isfinite(x[0] + x[1] + x[2])) fail(p, "non-finite position");
+    if (!std::isfinite(x[0] + x[1] + x[2])) {
+      bad = failure(p, "non-finite position");
+      break;
+    }
   }
+  agree_on_failure(bad);
   auto& r = state_.removed;
   const std::size_t first_event = removal_events_.size();
   // This step's removals summed exactly (the same in any order of the points), then booked.
@@ -439,18 +445,26 @@ void Solver::choose_time_step() {
   if (max_signal_speed_ > 0.0)
     dt = std::min(dt, settings_.cfl * geometry_.cell_size / max_signal_speed_);
   for (const auto* c : couplings_) dt = std::min(dt, c->stable_time_step());
+  // dt is the same on every rank (the signal speed is their largest), so every rank fails here.
   if (!std::isfinite(dt) || dt <= 0.0)
     throw SolverError(
         fmt::format("step {}, t = {:.6g} s: no finite time step (max signal speed {:.6g} m/s)",
-                    state_.step, state_.time, max_signal_speed_));
+                    state_.step, state_.time, max_signal_speed_),
+        distributed());
   if (state_.first_dt == 0.0) state_.first_dt = dt;
-  if (dt < settings_.min_time_step_fraction * state_.first_dt && particles_.size() > 0) {
-    const std::size_t p = fastest_particle();
-    fail(p, fmt::format("the time step collapsed to {:.3g} s ({:.2g} of the first, {:.3g} s; "
-                        "signal speed {:.4g} m/s): "
-                        "the run is unstable; this particle moves fastest, at {:.4g} m/s",
-                        dt, dt / state_.first_dt, state_.first_dt, max_signal_speed_,
-                        speed(particles_, p)));
+  if (dt < settings_.min_time_step_fraction * state_.first_dt && point_count() > 0) {
+    std::string fastest;  // this rank's fastest point, if it holds any; the fastest rank's wins
+    double v = -1.0;
+    if (particles_.size() > 0) {
+      const std::size_t p = fastest_particle();
+      v = speed(particles_, p);
+      fastest =
+          failure(p, fmt::format("the time step collapsed to {:.3g} s ({:.2g} of the first, "
+                                 "{:.3g} s; signal speed {:.4g} m/s): the run is unstable; "
+                                 "this particle moves fastest, at {:.4g} m/s",
+                                 dt, dt / state_.first_dt, state_.first_dt, max_signal_speed_, v));
+    }
+    agree_on_failure(fastest, v == v ? v : std::numeric_limits<double>::infinity());
   }
   state_.next_dt = dt;
 }
@@ -477,12 +491,16 @@ std::vector<RemovalEvent> Solver::take_removal_events() {
 }
 
 void Solver::fail(std::size_t p, const std::string& problem) const {
+  throw SolverError(failure(p, problem));
+}
+
+std::string Solver::failure(std::size_t p, const std::string& problem) const {
   const double* x = &particles_.position[3 * p];
-  throw SolverError(
-      fmt::format("step {}, t = {:.6g} s: particle {} (body '{}', material '{}') at ({:.6g}, "
-                  "{:.6g}, {:.6g}) m: {}",
-                  state_.step, state_.time, particles_.id[p], body_names_.at(particles_.body[p]),
-                  materials_.at(particles_.material[p])->name(), x[0], x[1], x[2], problem));
+  return fmt::format(
+      "step {}, t = {:.6g} s: particle {} (body '{}', material '{}') at ({:.6g}, {:.6g}, {:.6g}) "
+      "m: {}",
+      state_.step, state_.time, particles_.id[p], body_names_.at(particles_.body[p]),
+      materials_.at(particles_.material[p])->name(), x[0], x[1], x[2], problem);
 }
 
 // ---------------------------------------------------------------------------------------------

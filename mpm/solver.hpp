@@ -92,9 +92,16 @@ struct EnergyReport {
 };
 
 // A run that cannot continue: names the particle, body, material, position, time and step.
+// `every_rank`: in a run spread over ranks, every rank threw it at the same point of the step (with
+// the same message), so none waits inside the step for another and the run can end cleanly.
 class SolverError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit SolverError(const std::string& what, bool every_rank = false)
+      : std::runtime_error(what), every_rank_(every_rank) {}
+  bool every_rank() const { return every_rank_; }
+
+ private:
+  bool every_rank_;
 };
 
 // The restartable scalar state of a run (particles are saved separately).
@@ -156,7 +163,9 @@ class Solver {
     std::function<void()> grow;  // a hybrid's zone grows (or not) between two steps
   };
   void lead() { leading_ = true; }
-  void follow(const FollowerHooks& hooks);
+  // Until rank 0 says stop; true when a step failed on every rank (SolverError::every_rank),
+  // which rank 0 reports. Any other error propagates.
+  bool follow(const FollowerHooks& hooks);
   void announce_write(double what) const { announce(Command::write, what); }
   void announce_measure() const { announce(Command::measure); }
   void announce_grow() const { announce(Command::grow); }
@@ -209,6 +218,7 @@ class Solver {
   std::size_t fastest_particle() const;
   // Throws SolverError naming particle p, its body, material, position, the time and step.
   [[noreturn]] void fail(std::size_t particle, const std::string& problem) const;
+  std::string failure(std::size_t particle, const std::string& problem) const;
   // Removal events since the last call.
   std::vector<RemovalEvent> take_removal_events();
 
@@ -256,6 +266,11 @@ class Solver {
   std::vector<std::vector<double>> exchange(std::vector<std::vector<double>> out);
   void gather_removal_events(std::vector<RemovalEvent>& events) const;
   GridRanks grid_ranks();
+  // Collective where a rank may find a failure the others do not: with `failure` empty on every
+  // rank, returns the largest of every rank's `x`; else throws on every rank the SolverError
+  // (every_rank) of the rank whose `failure` is not empty and whose `score` is largest (the lowest
+  // such rank on a tie). On one rank, throws `failure` when it is not empty, else returns x.
+  double agree_on_failure(const std::string& failure, double score = 0.0, double x = 0.0) const;
   double max_over_ranks(double x) const { return distributed() ? comm_->max(x) : x; }
   enum class Command {
     stop,

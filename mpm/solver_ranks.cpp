@@ -15,6 +15,9 @@
 #include <bit>
 #include <map>
 #include <numeric>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "mpm/point_exchange.hpp"
 #include "mpm/solver.hpp"
@@ -277,6 +280,29 @@ double Solver::contact_work_over_ranks(NodalVelocity which) const {
   return total.value();
 }
 
+double Solver::agree_on_failure(const std::string& failure, double score, double x) const {
+  if (!distributed()) {
+    if (!failure.empty()) throw SolverError(failure);
+    return x;
+  }
+  // (failed, score, x) of every rank; then, if any failed, every rank's message as characters.
+  const auto flags = comm_->all_gather({failure.empty() ? 0.0 : 1.0, score, x});
+  int chosen = -1;
+  double largest = flags.at(0).at(2);
+  for (std::size_t r = 0; r < flags.size(); ++r) {
+    largest = std::max(largest, flags[r].at(2));
+    if (flags[r].at(0) != 0.0 &&
+        (chosen < 0 || flags[r].at(1) > flags[static_cast<std::size_t>(chosen)].at(1)))
+      chosen = static_cast<int>(r);
+  }
+  if (chosen < 0) return largest;
+  const auto messages = comm_->all_gather(std::vector<double>(failure.begin(), failure.end()));
+  const auto& m = messages.at(static_cast<std::size_t>(chosen));
+  std::string what;
+  for (const double c : m) what.push_back(static_cast<char>(c));
+  throw SolverError(what + (chosen == 0 ? "" : fmt::format(" (on rank {})", chosen)), true);
+}
+
 // Sends out[r] to rank r, counting the bytes that leave this rank.
 std::vector<std::vector<double>> Solver::exchange(std::vector<std::vector<double>> out) {
   for (std::size_t r = 0; r < out.size(); ++r)
@@ -296,13 +322,14 @@ void Solver::stop_followers(Communicator& comm) {
   comm.broadcast(message);
 }
 
-void Solver::follow(const FollowerHooks& hooks) {
+bool Solver::follow(const FollowerHooks& hooks) {
+  bool failed = false;
   for (;;) {
     std::vector<double> message;
     comm_->broadcast(message);
     switch (static_cast<Command>(static_cast<int>(message.at(0)))) {
       case Command::stop:
-        return;
+        return failed;
       case Command::initialise:
         initialise();
         break;
@@ -310,7 +337,12 @@ void Solver::follow(const FollowerHooks& hooks) {
         hooks.restore();
         break;
       case Command::step:
-        step(message.at(1));
+        try {
+          step(message.at(1));
+        } catch (const SolverError& e) {
+          if (!e.every_rank()) throw;
+          failed = true;  // rank 0 reports it and leads what follows (the failure's snapshot)
+        }
         break;
       case Command::energy:
         (void)energy();

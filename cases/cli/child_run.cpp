@@ -24,8 +24,8 @@ std::string shell_quote(const std::string& s) {
 }
 
 int run_child(const std::string& hvi, const std::vector<std::string>& args,
-              const std::filesystem::path& log, bool append) {
-  std::string command = shell_quote(hvi);
+              const std::filesystem::path& log, bool append, const std::string& launcher) {
+  std::string command = (launcher.empty() ? "" : launcher + " ") + shell_quote(hvi);
   for (const auto& a : args) {
     command.push_back(' ');
     command.append(shell_quote(a));

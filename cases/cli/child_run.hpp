@@ -12,9 +12,11 @@
 namespace hvi::driver {
 
 // Runs `hvi ARGS...` with stdout and stderr to `log` (appended to with `append`); returns the exit
-// code (-1 if it did not exit normally).
+// code (-1 if it did not exit normally). `launcher`, if not empty, goes before it as the shell
+// splits it (an MPI launcher: `mpiexec -n 4`).
 int run_child(const std::string& hvi, const std::vector<std::string>& args,
-              const std::filesystem::path& log, bool append = false);
+              const std::filesystem::path& log, bool append = false,
+              const std::string& launcher = "");
 
 // What a child run said in its log from byte `from` on (one invocation of a log that resumed runs
 // append to): the lines that tell how it ended ("hvi: ..." other than the banner naming the scene

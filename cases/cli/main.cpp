@@ -23,6 +23,8 @@
 //                                                  the critical diameter at each speed by trials
 //   mpirun -np N hvi run SCENE --out DIR           one run spread over N ranks
 //   mpirun -np N hvi sweep ...                     the runs handed out among N ranks
+//   hvi sweep ... --ranks-per-run K [--launcher 'srun -n {ranks}']
+//                                                  each run an MPI job of K ranks
 #include <omp.h>
 #include <sys/wait.h>
 
@@ -261,6 +263,13 @@ void add_study_commands(CLI::App& app, Commands& c) {
                           "Override a scene key in every run: key.path=value (repeatable)");
   c.sweep_cmd->add_option("--only", sweep.only, "Run only these runs (names)");
   c.sweep_cmd->add_flag("--list", sweep.list, "Print the runs with their overrides and exit");
+  c.sweep_cmd
+      ->add_option("--ranks-per-run", sweep.ranks_per_run,
+                   "Start each run as an MPI job of this many ranks (through --launcher)")
+      ->check(CLI::Range(1, 1 << 20));
+  c.sweep_cmd->add_option("--launcher", sweep.launcher,
+                          "With --ranks-per-run: the command that starts a run's ranks, {ranks} "
+                          "replaced by their count (default: mpiexec -n {ranks})");
   c.validate = hvi::driver::add_validate_command(app);
   c.ballistic_limit = hvi::driver::add_ballistic_limit_command(app);
 }

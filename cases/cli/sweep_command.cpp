@@ -398,6 +398,15 @@ std::vector<std::string> run_arguments(const SweepOptions& o, const Study& study
   return args;
 }
 
+// What starts a run's ranks: the launcher with its count, or nothing for a run of one rank.
+std::string launcher_command(const SweepOptions& o) {
+  if (o.ranks_per_run <= 1) return {};
+  std::string command = o.launcher;
+  for (auto at = command.find("{ranks}"); at != std::string::npos; at = command.find("{ranks}"))
+    command.replace(at, 7, std::to_string(o.ranks_per_run));
+  return command;
+}
+
 // The start of a run's follow-up lines on the console. On several ranks the runs' lines
 // interleave, so each names its run.
 std::string under(const SweepOptions& o, const SweepRun& run, int indent = 4) {
@@ -433,7 +442,7 @@ int run_one(const SweepOptions& o, const Study& study, std::size_t k, const Exis
                           fmt::join(run.overrides, " "));
   }
   const std::uintmax_t log_start = fs::file_size(run_log);
-  const int status = run_child(o.hvi, args, run_log, true);
+  const int status = run_child(o.hvi, args, run_log, true, launcher_command(o));
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary = read_run_summary(dir);
@@ -490,6 +499,14 @@ int run_study(const Study& whole, const SweepOptions& options, const parallel::R
   SweepOptions o = options;
   o.rank = ranks.rank();
   o.ranks = ranks.size();
+  if (o.ranks_per_run > 1 && o.ranks > 1) {
+    if (ranks.root())
+      fmt::print(stderr,
+                 "hvi sweep: --ranks-per-run starts each run as an MPI job of its own "
+                 "(`{}`); start the sweep itself without mpirun\n",
+                 launcher_command(o));
+    return input_error;
+  }
   Study study = whole;  // sweep.csv keeps the rows of runs made by earlier `--only`s
   auto selected_runs = select_runs(study, o);
   if (!selected_runs) return input_error;
@@ -500,7 +517,9 @@ int run_study(const Study& whole, const SweepOptions& options, const parallel::R
     fmt::print("hvi sweep: {}{} — {} run{} of {}{}\n", o.study,
                study.title.empty() ? "" : " (" + study.title + ")", study.runs.size(),
                study.runs.size() == 1 ? "" : "s", study.scene,
-               ranks.size() > 1 ? fmt::format(", handed out to {} ranks", ranks.size()) : "");
+               ranks.size() > 1      ? fmt::format(", handed out to {} ranks", ranks.size())
+               : o.ranks_per_run > 1 ? fmt::format(", each an MPI job: {}", launcher_command(o))
+                                     : "");
   if (o.list) {
     if (ranks.root())
       for (const auto& run : study.runs)

@@ -35,6 +35,11 @@ struct SweepOptions {
   bool list = false;                   // print the runs and exit
   std::string hvi;                     // this executable
   int rank = 0, ranks = 1;             // of the MPI job (set by run_sweep)
+  // More than 1: each run is an MPI job of its own, started by `launcher` ({ranks} replaced by
+  // this count), one at a time, from a sweep that is not itself under an MPI launcher. A run that
+  // fails is its job's alone.
+  int ranks_per_run = 1;
+  std::string launcher = "mpiexec -n {ranks}";
   bool quiet_end = false;    // no closing line pointing at hvi fit and hvi report (for callers)
   bool quiet_start = false;  // no opening line naming the study (for callers)
 };

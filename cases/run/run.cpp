@@ -316,13 +316,15 @@ int SceneRun::time_loop() {
   } catch (const mpm::SolverError& e) {
     progress_->finish();
     fmt::print(stderr, "hvi: the run failed: {}\n", e.what());
-    if (options_.ranks) {  // the other ranks wait inside the step: the job ends here
+    if (options_.ranks && !e.every_rank()) {  // the others wait inside the step: the job ends
       fmt::print(stderr, "hvi: checkpoint.h5 (step {}) holds the last state before it\n",
                  last_checkpoint_step_);
       std::fflush(nullptr);
       options_.ranks->abort(run_failed);
     }
-    // The state at the failure, for a look in ParaView or h5py (not a restart point).
+    // The state at the failure, for a look in ParaView or h5py (not a restart point); a spread
+    // run's every rank failed alike and now waits for rank 0, which gathers the points.
+    s.gather_to_root();
     mpm::io::write_snapshot_file(dir_ / "failure.h5", s);
     fmt::print(stderr,
                "hvi: {} holds the state at the failure; checkpoint.h5 (step {}) the last state "
@@ -402,12 +404,16 @@ void SceneRun::log_energy() {
   if (scene_.max_energy_growth > 0 &&
       e.total() - initial_energy_ > scene_.max_energy_growth * std::fabs(initial_energy_)) {
     s.gather_to_root();  // to name the fastest point of all
-    s.fail(s.fastest_particle(),
-           fmt::format("the total energy grew by {:.0f}% (run.max_energy_growth = {:.0f}%): the "
-                       "run is unstable; "
-                       "this particle moves fastest, at {:.4g} m/s",
-                       100 * (e.total() / initial_energy_ - 1), 100 * scene_.max_energy_growth,
-                       mpm::speed(s.particles(), s.fastest_particle())));
+    // The other ranks of a spread run wait for rank 0's next command: the run can end cleanly.
+    throw mpm::SolverError(
+        s.failure(
+            s.fastest_particle(),
+            fmt::format("the total energy grew by {:.0f}% (run.max_energy_growth = {:.0f}%): the "
+                        "run is unstable; "
+                        "this particle moves fastest, at {:.4g} m/s",
+                        100 * (e.total() / initial_energy_ - 1), 100 * scene_.max_energy_growth,
+                        mpm::speed(s.particles(), s.fastest_particle()))),
+        true);
   }
 }
 
@@ -706,7 +712,9 @@ namespace {
 
 // A rank but the first of a run spread over ranks: builds the same solver with its share of the
 // points, and steps with rank 0 until it says stop. Signals are rank 0's to act on (it checkpoints
-// and stops the others); a solver error here ends the job.
+// and stops the others). A step that fails on every rank alike (SolverError::every_rank: a bad
+// point on any rank, a collapsed time step) is rank 0's to report, and every rank ends with the
+// run's failure code; any other error here ends the job.
 int follow_scene(const scene::Scene& scene, const RunOptions& options) {
   std::signal(SIGINT, SIG_IGN);
   std::signal(SIGTERM, SIG_IGN);
@@ -753,7 +761,7 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
       if (hybrid) hybrid->restore_zone();
     };
     const auto grow = [&] { (void)hybrid->grow(*solver); };
-    solver->follow({restore, write, measure, grow});
+    if (solver->follow({restore, write, measure, grow})) return run_failed;  // rank 0 said why
   } catch (const std::exception& e) {
     fmt::print(stderr, "hvi: rank {}: the run failed: {}\n", options.ranks->rank(), e.what());
     std::fflush(nullptr);

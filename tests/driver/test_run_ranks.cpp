@@ -1,8 +1,8 @@
 // `mpirun -np N hvi run`: one run spread over the ranks of an MPI job (mpm/solver_ranks.cpp) writes
 // the bytes a run on one rank writes: every snapshot file, particles.xmf and energy.csv, also when
 // it is stopped on 3 ranks and resumed on 2; also with the node-averaged dilatation and contact.
-// Also a hybrid's far field, and a zone that grows over it. Under mpirun, oversubscribed (this
-// machine has 2 cores).
+// Also a hybrid's far field, and a zone that grows over it; a run that fails ends every rank
+// cleanly. Under mpirun, oversubscribed (this machine has 2 cores).
 #include <sys/wait.h>
 
 #include <cmath>
@@ -195,6 +195,35 @@ TEST(RunOnRanks, AGrowingZoneWritesTheOneRankRunsBytes) {
   expect_same_far_field_output(one, spread);
   EXPECT_EQ(summary_number(one, "far_field_elements_taken_over"),
             summary_number(spread, "far_field_elements_taken_over"));
+}
+
+// A run that goes wrong on ranks (the small spheres with linear shape functions and USL, as in
+// Cli.FailedRunNamesTheParticleAndLeavesACheckpointFromBefore): the rank holding a bad point
+// finds it, every rank learns of it at the same point of the step, and every rank ends with the
+// run's failure code. The message names a particle and the step one rank names, rank 0 writes
+// failure.h5 with every point, and no rank aborts the job.
+TEST(RunOnRanks, AFailingRunEndsEveryRankWithItsMessageWithoutAborting) {
+  if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const std::string spheres = std::string(HVI_SOURCE_DIR) + "/tests/driver/data/small_spheres.toml";
+  const std::string args = " --threads 1 --set grid.shape_function=linear --set grid.scheme=usl";
+  const fs::path one = scratch("ranks_fail_one"), spread = scratch("ranks_fail_spread");
+  const fs::path log = scratch("ranks_fail_log.txt");
+  std::string err;
+  ASSERT_EQ(run("run " + spheres + " --out " + one.string() + args, &err), 3);
+  ASSERT_EQ(on_ranks(2, "run " + spheres + " --out " + spread.string() + args, log), 3)
+      << read(log);
+  const std::string said = read(log);
+  const auto failing_step = [](const std::string& text) {
+    const auto at = text.find("the run failed: step ");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find(',', at) - at);
+  };
+  EXPECT_FALSE(failing_step(err).empty()) << err;
+  EXPECT_EQ(failing_step(said), failing_step(err)) << said;
+  for (const char* part : {"particle ", "(body '", "non-positive volume", "failure.h5"})
+    EXPECT_NE(said.find(part), std::string::npos) << part << " in: " << said;
+  EXPECT_EQ(said.find("MPI_ABORT"), std::string::npos) << said;
+  EXPECT_TRUE(fs::exists(spread / "failure.h5"));
+  EXPECT_EQ(fs::file_size(spread / "failure.h5"), fs::file_size(one / "failure.h5"));
 }
 
 }  // namespace

@@ -95,6 +95,17 @@ TEST(Sweep, TheCommandLineOverridesARunsOwnSetButMayNotFixAnAxis) {
   }
 }
 
+// The drift study's 5 rows in two sweeps' sweep.csv, the same but for each run's own wall time and
+// memory peak.
+void expect_same_rows(const fs::path& one, const fs::path& two) {
+  auto a = table(one / "sweep.csv"), b = table(two / "sweep.csv");
+  ASSERT_EQ(a.size(), 5u);
+  for (auto* rows : {&a, &b})
+    for (auto& [name, row] : *rows)
+      for (const char* own : {"wall_seconds", "peak_memory_bytes"}) row.erase(own);
+  EXPECT_EQ(a, b);
+}
+
 // mpirun -np 2 hvi sweep: the runs are handed out between the ranks, and sweep.csv holds what one
 // rank's sweep writes, but for the runs' own wall times and memory peaks.
 TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
@@ -116,12 +127,7 @@ TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
   const std::string console = read(log);
   EXPECT_NE(console.find("handed out to 2 ranks"), std::string::npos) << console;
   EXPECT_NE(console.find("(rank 1)"), std::string::npos) << console;  // rank 1 ran some
-  auto a = table(one / "sweep.csv"), b = table(two / "sweep.csv");
-  ASSERT_EQ(a.size(), 5u);
-  for (auto* rows : {&a, &b})
-    for (auto& [name, row] : *rows)
-      for (const char* own : {"wall_seconds", "peak_memory_bytes"}) row.erase(own);
-  EXPECT_EQ(a, b);
+  expect_same_rows(one, two);
 
   // Any other command on several ranks is refused before it does anything.
   const std::string check = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + mpirun +
@@ -130,6 +136,43 @@ TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
   const int refused = std::system(check.c_str());
   EXPECT_TRUE(WIFEXITED(refused) && WEXITSTATUS(refused) == 2) << read(log);
   EXPECT_NE(read(log).find("share their work among ranks"), std::string::npos) << read(log);
+}
+
+// hvi sweep --ranks-per-run 2: each run is an MPI job of 2 ranks that the launcher starts, one
+// at a time; sweep.csv holds what a one-rank sweep writes (but for the runs' own wall times and
+// memory peaks), and each run's log says it ran on 2 ranks. Under mpirun itself it is refused.
+TEST(Sweep, RanksPerRunStartsEachRunAsAnMpiJobAndFillsTheSameTable) {
+  const std::string mpirun = HVI_MPIEXEC;
+  HVI_SKIP_WITHOUT_MPIRUN(mpirun);
+  const fs::path one = fs::path(testing::TempDir()) / "hvi_sweep_one_rank_per_run";
+  const fs::path two = fs::path(testing::TempDir()) / "hvi_sweep_two_ranks_per_run";
+  fs::remove_all(one);
+  fs::remove_all(two);
+  const std::string study = data + "drift_study.toml";
+  const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_ranks_per_run.log";
+  ASSERT_EQ(run_logged("sweep " + study + " --out " + one.string() + " --threads 1", log), 0)
+      << read(log);
+  const std::string root = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ";
+  const std::string launcher = mpirun + " --oversubscribe -np {ranks}";
+  const std::string command = root + hvi + " sweep " + study + " --out " + two.string() +
+                              " --threads 1 --ranks-per-run 2 --launcher '" + launcher + "' > " +
+                              log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read(log);
+  EXPECT_NE(read(log).find("each an MPI job: " + mpirun + " --oversubscribe -np 2"),
+            std::string::npos)
+      << read(log);
+  expect_same_rows(one, two);
+  for (const auto& [name, row] : table(one / "sweep.csv"))
+    EXPECT_NE(read(two / (name + ".log")).find("ranks: 2;"), std::string::npos) << name;
+
+  const std::string nested = root + mpirun + " --oversubscribe -np 2 " + hvi + " sweep " + study +
+                             " --out " + two.string() + " --ranks-per-run 2 > " + log.string() +
+                             " 2>&1";
+  const int refused = std::system(nested.c_str());
+  EXPECT_TRUE(WIFEXITED(refused) && WEXITSTATUS(refused) == 2) << read(log);
+  EXPECT_NE(read(log).find("start the sweep itself without mpirun"), std::string::npos)
+      << read(log);
 }
 
 TEST(Sweep, RunsEveryScenePutsItsMeasuresInOneTableAndSkipsWhatIsDone) {
