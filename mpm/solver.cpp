@@ -399,11 +399,12 @@ void Solver::remove_escaped_particles() {
       break;
     }
   }
-  agree_on_failure(bad);
+  if (!distributed()) agree_on_failure(bad);  // throws it; spread, the sums below carry it
   auto& r = state_.removed;
   const std::size_t first_event = removal_events_.size();
   // This step's removals summed exactly (the same in any order of the points), then booked.
-  std::array<ExactSum, 7> step;  // mass, kinetic, internal, momentum, count
+  std::array<ExactSum, 8> step;  // mass, kinetic, internal, momentum, count, ranks that failed
+  if (!bad.empty()) step[7] += 1.0;
   for (const std::uint32_t p : escaped_) {
     const double m = particles_.mass[p];
     const double* v = &particles_.velocity[3 * p];
@@ -426,7 +427,10 @@ void Solver::remove_escaped_particles() {
   std::sort(removal_events_.begin() + static_cast<std::ptrdiff_t>(first_event),
             removal_events_.end(),
             [](const RemovalEvent& a, const RemovalEvent& b) { return a.id < b.id; });
-  if (distributed()) add_over_ranks(*comm_, step);  // every rank books every rank's removals
+  if (distributed()) {
+    add_over_ranks(*comm_, step);                      // every rank books every rank's removals
+    if (step[7].value() > 0.0) agree_on_failure(bad);  // on every rank alike: it throws
+  }
   r.particles += static_cast<std::int64_t>(step[6].value());
   global_points_ -= static_cast<std::size_t>(step[6].value());
   r.mass += step[0].value();

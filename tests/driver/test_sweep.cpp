@@ -95,6 +95,21 @@ TEST(Sweep, TheCommandLineOverridesARunsOwnSetButMayNotFixAnAxis) {
   }
 }
 
+// An empty directory `name` under the tests' temporary directory.
+fs::path fresh(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+// `study` swept into `out` as one plain process, one thread per run (the table to compare with).
+testing::AssertionResult plain_sweep(const std::string& study, const fs::path& out,
+                                     const fs::path& log) {
+  if (run_logged("sweep " + study + " --out " + out.string() + " --threads 1", log) == 0)
+    return testing::AssertionSuccess();
+  return testing::AssertionFailure() << read(log);
+}
+
 // The drift study's 5 rows in two sweeps' sweep.csv, the same but for each run's own wall time and
 // memory peak.
 void expect_same_rows(const fs::path& one, const fs::path& two) {
@@ -111,14 +126,10 @@ void expect_same_rows(const fs::path& one, const fs::path& two) {
 TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
   const std::string mpirun = HVI_MPIEXEC;
   HVI_SKIP_WITHOUT_MPIRUN(mpirun);
-  const fs::path one = fs::path(testing::TempDir()) / "hvi_sweep_one_rank";
-  const fs::path two = fs::path(testing::TempDir()) / "hvi_sweep_two_ranks";
-  fs::remove_all(one);
-  fs::remove_all(two);
+  const fs::path one = fresh("hvi_sweep_one_rank"), two = fresh("hvi_sweep_two_ranks");
   const std::string study = data + "drift_study.toml";
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_ranks.log";
-  ASSERT_EQ(run_logged("sweep " + study + " --out " + one.string() + " --threads 1", log), 0)
-      << read(log);
+  ASSERT_TRUE(plain_sweep(study, one, log));
   const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
                               mpirun + " --oversubscribe -np 2 " + hvi + " sweep " + study +
                               " --out " + two.string() + " --threads 1 > " + log.string() + " 2>&1";
@@ -144,14 +155,11 @@ TEST(Sweep, TwoRanksShareAStudyAndFillTheSameTable) {
 TEST(Sweep, RanksPerRunStartsEachRunAsAnMpiJobAndFillsTheSameTable) {
   const std::string mpirun = HVI_MPIEXEC;
   HVI_SKIP_WITHOUT_MPIRUN(mpirun);
-  const fs::path one = fs::path(testing::TempDir()) / "hvi_sweep_one_rank_per_run";
-  const fs::path two = fs::path(testing::TempDir()) / "hvi_sweep_two_ranks_per_run";
-  fs::remove_all(one);
-  fs::remove_all(two);
+  const fs::path one = fresh("hvi_sweep_one_rank_per_run");
+  const fs::path two = fresh("hvi_sweep_two_ranks_per_run");
   const std::string study = data + "drift_study.toml";
   const fs::path log = fs::path(testing::TempDir()) / "hvi_sweep_ranks_per_run.log";
-  ASSERT_EQ(run_logged("sweep " + study + " --out " + one.string() + " --threads 1", log), 0)
-      << read(log);
+  ASSERT_TRUE(plain_sweep(study, one, log));
   const std::string root = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ";
   const std::string launcher = mpirun + " --oversubscribe -np {ranks}";
   const std::string command = root + hvi + " sweep " + study + " --out " + two.string() +
