@@ -1,9 +1,12 @@
 #include "coupling/far_field_coupling.hpp"
 
+#include "mpm/communicator.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace hvi::coupling {
 
@@ -82,6 +85,15 @@ void FarFieldCoupling::retie(const InterfaceBand& band) {
 
 void FarFieldCoupling::spread(const mpm::GridRanks& ranks) {
   ranks_ = ranks;
+  mpm::Communicator* comm = ranks.comm;
+  fem::FarFieldRanks split{comm->rank(), comm->size(), {}, {}};
+  split.all_gather = [comm](const std::vector<double>& mine) { return comm->all_gather(mine); };
+  split.gather_to_root = [comm](const std::vector<double>& mine) {
+    std::vector<std::vector<double>> to(static_cast<std::size_t>(comm->size()));
+    to[0] = mine;
+    return comm->exchange(std::move(to));
+  };
+  far_field_.spread(std::move(split));
 }
 
 void FarFieldCoupling::request_blocks(std::vector<std::uint64_t>& keys) const {

@@ -30,7 +30,8 @@
 // the smaller of the two limits.
 //
 // Spread over ranks, every rank holds the whole far field and steps it alike (it is small beside
-// the zone: that is what it is for). Each rank adds the tied nodes to the copies of the grid
+// the zone: that is what it is for), while its element work is split over the ranks and merged
+// back bitwise (fem::FarField::spread). Each rank adds the tied nodes to the copies of the grid
 // blocks it holds and requests the blocks it owns; after the grid update, each tie's (v_I, dv_I)
 // is read on the rank owning its block and gathered to every rank, which sums them per node in
 // tie order, as one rank does: every rank's far field keeps the one-rank bits.
@@ -56,6 +57,7 @@ class FarFieldCoupling : public mpm::GridCoupling {
                    const InterfaceBand& band, double flip = 1.0, double safety = 0.9);
 
   void spread(const mpm::GridRanks& ranks) override;
+  void gather_to_root() override { far_field_.gather_state_to_root(); }
   void request_blocks(std::vector<std::uint64_t>& keys) const override;
   void add_to_grid(mpm::SparseGrid& grid, mpm::GridStage stage, double time, double dt) override;
   void take_from_grid(const mpm::SparseGrid& grid, double time, double dt) override;

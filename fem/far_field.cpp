@@ -212,14 +212,15 @@ std::size_t FarField::remove_cells(const std::array<double, 4>& box) {
     }
   if (newly == 0) return 0;
   I.removed_cells += newly;
-  for (auto& colour : I.colours)
-    std::erase_if(colour, [&](unsigned cell) {
-      for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
-        if (!I.lane_removed[Impl::W * cell + lane]) return false;
-      if (!I.batch_stretch.empty())
-        I.batch_stretch[cell] = 1.0;  // what its kept cells would give: none
-      return true;
-    });
+  const auto all_removed = [&](unsigned cell) {
+    for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane)
+      if (!I.lane_removed[Impl::W * cell + lane]) return false;
+    if (!I.batch_stretch.empty())
+      I.batch_stretch[cell] = 1.0;  // what its kept cells would give: none
+    return true;
+  };
+  for (auto* list : {&I.colours, &I.all_colours})
+    for (auto& colour : *list) std::erase_if(colour, all_removed);
   I.lump_mass();
   for (std::size_t a = 0; a < I.mass.size(); ++a)
     if (I.mass[a] == 0.0)
@@ -290,6 +291,7 @@ std::vector<double> FarField::damaged_cell_centres(double damage) const {
   if (!I.damage_slot) return centres;  // no failing layer: no damage slot
   for (unsigned cell = 0; cell < I.matrix_free.n_cell_batches(); ++cell)
     for (unsigned lane = 0; lane < I.matrix_free.n_active_entries_per_cell_batch(cell); ++lane) {
+      if (I.ranks && I.batch_reporter[cell] != I.ranks->rank) continue;  // another rank's
       if (!I.lane_is_plastic(cell, lane)) continue;  // elastic, or removed (its layer is -1)
       double d = 0.0;
       for (unsigned q = 0; q < I.n_q; ++q) d = std::max(d, I.state(cell, q, lane)[7]);

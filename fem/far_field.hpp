@@ -24,8 +24,21 @@
 // nodal points is diagonal and positive for Q1 and Q2.
 //
 // Nodes are numbered 0..n-1 and every nodal array holds 3 values per node (x, y, z), node-major.
+//
+// Spread over ranks (spread()), every rank holds the whole mesh and every node's displacement,
+// velocity and mass, and steps them alike; the element work is split. Each node has one owner: the
+// cell batches are cut into slabs along x of equal estimated cost (a plastic lane counts
+// `plastic_cost` elastic ones) and a node belongs to the lowest rank whose slab touches it. A rank
+// evaluates only the batches touching a node it owns, colour by colour as one rank does, so each
+// of its nodes sums the same terms in the same order; then every rank gives its nodes' forces and
+// its batches' shares of the sums (plastic work, stretch; each batch reported by the lowest rank
+// evaluating it), and every rank takes them all, in node and batch order. Every rank's far field
+// keeps the one-rank bits; a batch on a slab's edge is evaluated on both sides, alike. A cell's
+// plastic state is current on the ranks evaluating it: gather_state_to_root() brings it all to
+// rank 0, which alone writes it.
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -81,6 +94,19 @@ struct LayeredMesh {
 // so the steps add up to b - a exactly.
 std::vector<double> graded_steps(double a, double b, double fine_lower, double fine_upper,
                                  double fine, double ratio, double coarse, int keep = 1);
+
+// The ranks a far field's element work is split over. fem/ knows no MPI: the caller hands in two
+// collectives on buffers of doubles, which every rank calls at the same point.
+struct FarFieldRanks {
+  int rank = 0, size = 1;
+  // Every rank's `mine`, indexed by rank, on every rank.
+  std::function<std::vector<std::vector<double>>(const std::vector<double>&)> all_gather;
+  // Every rank's `mine`, indexed by rank, on rank 0 (what other ranks get back is unused).
+  std::function<std::vector<std::vector<double>>(const std::vector<double>&)> gather_to_root;
+  // The cost of a plastic lane (J2 or a yielding core, with its return to the yield surface) in
+  // elastic lanes, for the slabs' balance.
+  double plastic_cost = 3.0;
+};
 
 class FarField {
  public:
@@ -170,8 +196,20 @@ class FarField {
   std::size_t remove_cells(const std::array<double, 4>& box);
   std::size_t removed_cell_count() const;
   // The cell batches (of VectorizedArray's width) the element loops visit: those with a cell
-  // not removed. A zone grown over the far field's cells takes their cost with them.
+  // not removed. A zone grown over the far field's cells takes their cost with them. Spread: those
+  // this rank evaluates.
   std::size_t evaluated_batch_count() const;
+
+  // Splits the element work over ranks (see the top of this file); call it once, on every rank,
+  // before the first step. From then on internal_force(), step(), apply_stiffness() and
+  // strain_energy() are collective: every rank calls them at the same point.
+  void spread(FarFieldRanks ranks);
+  // The nodes this rank owns (every node on one rank).
+  std::size_t owned_node_count() const;
+  // Collective when spread (nothing otherwise): rank 0 takes every cell's plastic state, before
+  // it reads it: write_vtu(), plastic_state(), sample(), the largest plastic strains and the
+  // failed volumes. On other ranks those read what this rank evaluates only.
+  void gather_state_to_root();
 
   // Whether the kinematics are finite (Green-Lagrange) rather than small strain.
   bool finite_strain() const;
@@ -189,7 +227,8 @@ class FarField {
   // The undeformed in-plane centres (x, y: 2 per cell) of the cells not removed whose largest
   // damage over their quadrature points, in a failing core or failing facesheets, is at least
   // `damage`; in the mesh's cell order, so the same for any thread count. Empty without failing
-  // layers.
+  // layers. Spread, only the cells of the batches this rank reports: their union over the ranks is
+  // the one-rank set.
   std::vector<double> damaged_cell_centres(double damage) const;
   // The plastic state (per quadrature point of the plastic layers' cells: eps_p and alpha, the
   // accumulated plastic strain in a yielding core, and a failing layer's damage) and the plastic

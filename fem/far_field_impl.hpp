@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <omp.h>
@@ -271,7 +272,6 @@ struct FarField::Impl {
         batch_stretch[cell] = s;
       }
     });
-    if (any_plastic()) plastic_work += batch_total();
   }
 
   // 1/2 int (E - E_p) : C (E - E_p) dV with the committed plastic strain.
@@ -287,6 +287,7 @@ struct FarField::Impl {
           batch_sum[cell] += w[lane];
       }
     });
+    if (ranks) merge(nullptr, batch_sum.data(), nullptr);
     return batch_total();
   }
 
@@ -300,14 +301,55 @@ struct FarField::Impl {
       nonlinear_force_kernel<1>(src, dst);
     else
       nonlinear_force_kernel<2>(src, dst);
+    if (ranks)
+      merge(&dst, any_plastic() ? batch_sum.data() : nullptr,
+            spec.finite_strain ? batch_stretch.data() : nullptr);
+    if (any_plastic()) plastic_work += batch_total();
   }
 
   // The cell batches in colours: no two batches of a colour share a node, so within a colour
   // they scatter into disjoint entries and run in parallel (OpenMP), while the colours run in
   // order. Every entry then receives its contributions in the same order for any thread count:
   // the far field is bitwise the same on 1 or N threads. A batch whose cells remove_cells has
-  // all taken out adds nothing (no stiffness, no plastic state) and leaves its colour.
-  std::vector<std::vector<unsigned>> colours;
+  // all taken out adds nothing (no stiffness, no plastic state) and leaves its colour. Spread,
+  // `colours` keeps the batches this rank evaluates, `all_colours` every rank's.
+  std::vector<std::vector<unsigned>> colours, all_colours;
+
+  // Spread over ranks (FarField::spread): per node its owner, per batch the rank reporting its
+  // shares of sums (the lowest owner of its nodes, which evaluates it).
+  std::optional<FarFieldRanks> ranks;
+  std::vector<int> node_owner, batch_reporter;
+
+  // Every rank gives what it holds current and takes the others': the force (3 per node) in
+  // `nodal` from the nodes' owners, and per batch `sums` and `stretch` from its reporter; a null
+  // pointer is not exchanged.
+  void merge(Vector<double>* nodal, double* sums, double* stretch) const {
+    const int me = ranks->rank;
+    std::vector<double> mine;
+    if (nodal)
+      for (std::size_t a = 0; a < node_owner.size(); ++a)
+        if (node_owner[a] == me)
+          mine.insert(mine.end(), nodal->begin() + 3 * a, nodal->begin() + 3 * a + 3);
+    for (double* per_batch : {sums, stretch})
+      if (per_batch)
+        for (std::size_t b = 0; b < batch_reporter.size(); ++b)
+          if (batch_reporter[b] == me) mine.push_back(per_batch[b]);
+    const auto all = ranks->all_gather(mine);
+    std::vector<std::size_t> at(all.size(), 0);
+    if (nodal)
+      for (std::size_t a = 0; a < node_owner.size(); ++a) {
+        const auto r = static_cast<std::size_t>(node_owner[a]);
+        std::copy_n(&all[r][at[r]], 3, nodal->begin() + 3 * a);
+        at[r] += 3;
+      }
+    for (double* per_batch : {sums, stretch})
+      if (per_batch)
+        for (std::size_t b = 0; b < batch_reporter.size(); ++b) {
+          const auto r = static_cast<std::size_t>(batch_reporter[b]);
+          per_batch[b] = all[r][at[r]++];
+        }
+  }
+  void partition();
 
   // body(phi, batch) for every cell batch, colour by colour, with one FEEvaluation per thread.
   template <int p, typename Body>
@@ -380,6 +422,7 @@ struct FarField::Impl {
       stiffness_kernel<1>(src, dst);
     else
       stiffness_kernel<2>(src, dst);
+    if (ranks) merge(&dst, nullptr, nullptr);
   }
 
   void build_mesh();

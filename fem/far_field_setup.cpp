@@ -237,6 +237,7 @@ void FarField::Impl::colour_batches() {
     if (static_cast<int>(colours.size()) <= c) colours.resize(c + 1);
     colours[c].push_back(cell);
   }
+  all_colours = colours;
   batch_sum.assign(matrix_free.n_cell_batches(), 0.0);
   if (spec.finite_strain) batch_stretch.assign(matrix_free.n_cell_batches(), 1.0);
 }

@@ -65,6 +65,9 @@ class GridCoupling {
   virtual void take_from_grid(const SparseGrid& /*grid*/, double /*time*/, double /*dt*/) {}
   virtual double stable_time_step() const { return std::numeric_limits<double>::infinity(); }
   virtual CoupledEnergy energy() const { return {}; }
+  // Spread: brings state the model splits over ranks to rank 0, which writes and reports it
+  // (Solver::gather_coupled_state, collective). Nothing for a model every rank holds alike.
+  virtual void gather_to_root() {}
   // Restartable state: named arrays (names unique across a solver's couplings) a checkpoint
   // writes and a resumed run fills back in place, same sizes.
   virtual std::vector<std::pair<std::string, std::span<double>>> state() { return {}; }

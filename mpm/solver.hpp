@@ -149,6 +149,9 @@ class Solver {
   // Collective: moves every point to rank 0, for output written there; the next step spreads
   // them again.
   void gather_to_root();
+  // Collective: the coupled models bring what they split over ranks to rank 0
+  // (GridCoupling::gather_to_root), before rank 0 writes or reports it.
+  void gather_coupled_state();
   // A driver that runs on rank 0 only: there, lead() makes each collective call tell the other
   // ranks, which wait in follow(), to make it too. What a follower does beyond the solver's own
   // calls: `restore` when rank 0 restores a checkpoint (read its share of the points, declaring
@@ -284,7 +287,8 @@ class Solver {
     write,
     positions,
     measure,
-    grow
+    grow,
+    coupled_state
   };
   void announce(Command command, double argument = 0.0) const;
 

@@ -317,6 +317,12 @@ void Solver::announce(Command command, double argument) const {
   comm_->broadcast(message);
 }
 
+void Solver::gather_coupled_state() {
+  if (!distributed()) return;
+  announce(Command::coupled_state);
+  for (auto* c : couplings_) c->gather_to_root();
+}
+
 void Solver::stop_followers(Communicator& comm) {
   std::vector<double> message{static_cast<double>(Command::stop), 0.0};
   comm.broadcast(message);
@@ -367,6 +373,9 @@ bool Solver::follow(const FollowerHooks& hooks) {
         break;
       case Command::grow:
         hooks.grow();
+        break;
+      case Command::coupled_state:
+        gather_coupled_state();
         break;
     }
   }

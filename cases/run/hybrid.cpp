@@ -124,21 +124,21 @@ void Hybrid::record_reference_positions(mpm::Solver& solver) const {
 }
 
 std::string Hybrid::describe() const {
-  return fmt::format(
+  const fem::FarField& f = *far_field_;
+  const char* faces = failing_faces_   ? ", failing J2 facesheets"
+                      : plastic_faces_ ? ", J2 facesheets"
+                                       : "";
+  const char* core = failing_core_ ? ", failing core" : yielding_core_ ? ", yielding core" : "";
+  std::string text = fmt::format(
       "far field: {} nodes, {} elements (trilinear{}{}{}{}), {} tied to grid nodes ({} exactly), "
-      "{} with "
-      "conditions; stable step {:.4g} s; {:.1f} MB",
-      far_field_->node_count(), far_field_->cell_count(),
-      far_field_->finite_strain() ? ", finite strain" : "",
-      failing_faces_   ? ", failing J2 facesheets"
-      : plastic_faces_ ? ", J2 facesheets"
-                       : "",
-      spec_.strain_rate ? " at their strain rate" : "",
-      failing_core_    ? ", failing core"
-      : yielding_core_ ? ", yielding core"
-                       : "",
-      coupling_->tied_node_count(), coupling_->exact_node_count(), fixed_nodes_,
-      far_field_->stable_time_step(), far_field_->bytes() / 1e6);
+      "{} with conditions; stable step {:.4g} s; {:.1f} MB",
+      f.node_count(), f.cell_count(), f.finite_strain() ? ", finite strain" : "", faces,
+      spec_.strain_rate ? " at their strain rate" : "", core, coupling_->tied_node_count(),
+      coupling_->exact_node_count(), fixed_nodes_, f.stable_time_step(), f.bytes() / 1e6);
+  if (f.owned_node_count() < f.node_count())  // spread over ranks
+    text += fmt::format("; this rank owns {} of its nodes and evaluates {} cell batches",
+                        f.owned_node_count(), f.evaluated_batch_count());
+  return text;
 }
 
 std::string Hybrid::nodes_file(std::int64_t step) {
@@ -228,15 +228,16 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   const std::array<double, 4> zone = coupling_->band().zone;
   const std::vector<std::int64_t> bodies(panel_bodies_.begin(), panel_bodies_.end());
   // The panel's points damaged at a side, or the far field's own cells torn just beyond it.
+  // Spread, each rank's points and the far-field cells it reports, OR-ed over the ranks.
   std::array<bool, 4> reached = coupling::sides_reached(solver.particles(), bodies, zone, *growth_);
-  if (mpm::Communicator* comm = solver.communicator()) {  // the points of every rank
+  const std::array<bool, 4> outside = coupling::sides_reached_from_outside(
+      far_field_->damaged_cell_centres(growth_->damage), zone, *growth_);
+  for (int side = 0; side < 4; ++side) reached[side] = reached[side] || outside[side];
+  if (mpm::Communicator* comm = solver.communicator()) {
     const std::vector<double> mine(reached.begin(), reached.end());
     for (const auto& from : comm->all_gather(mine))
       for (int side = 0; side < 4; ++side) reached[side] = reached[side] || from.at(side) != 0.0;
   }
-  const std::array<bool, 4> outside = coupling::sides_reached_from_outside(
-      far_field_->damaged_cell_centres(growth_->damage), zone, *growth_);
-  for (int side = 0; side < 4; ++side) reached[side] = reached[side] || outside[side];
   const std::array<bool, 4> held = coupling::sides_held_at_limit(reached, zone, *growth_);
   if (std::find(held.begin(), held.end(), true) != held.end()) {
     if (held_at_limit_.steps++ == 0) held_at_limit_.first_time = solver.time();
@@ -246,7 +247,9 @@ std::optional<coupling::TakeoverReport> Hybrid::grow(mpm::Solver& solver) {
   }
   const std::array<double, 4> grown = coupling::grown_zone(reached, zone, *growth_);
   if (grown == zone) return std::nullopt;
-  // Spread over ranks, rank 0 adds them all; the next step sends each to its rank.
+  // Spread over ranks, rank 0 adds them all, from the far field's state there; the next step
+  // sends each to its rank.
+  coupling_->gather_to_root();
   coupling::NewPoints points =
       solver.rank() == 0 ? sample_ring(coupling::ring(zone, grown), solver) : coupling::NewPoints{};
   spec_.zone = grown;

@@ -443,7 +443,9 @@ void SceneRun::measure_holes() {
 
 void SceneRun::write_snapshots() {
   snapshots_->write(*solver_);
-  if (hybrid_) hybrid_->write_snapshot(dir_, solver_->step_count(), solver_->time());
+  if (!hybrid_) return;
+  solver_->gather_coupled_state();  // spread: the far field's plastic state, to rank 0
+  hybrid_->write_snapshot(dir_, solver_->step_count(), solver_->time());
 }
 
 // The scene's state hash in two halves of 32 bits: the checkpoint's extras are doubles.
@@ -480,6 +482,7 @@ void SceneRun::checkpoint(double wall) {
       hash_halves(scene::state_hash(scene_));
   probes_->save(extras);
   if (hybrid_) hybrid_->save(extras);
+  solver_->gather_coupled_state();
   mpm::io::write_checkpoint(dir_ / "checkpoint.h5", *solver_, extras, options_.shared_files);
 }
 
@@ -494,6 +497,7 @@ int SceneRun::finish(int code) {
   const std::size_t peak_memory =
       peak_memory_bytes();  // of the run, before the hole measurement reads snapshots
   print_result(code, rate, peak_memory, e, balance);
+  s.gather_coupled_state();  // the far field's closing figures and summary, on rank 0
   print_far_field();
   record_.initial_energy = initial_energy_;
   s.announce_measure();  // the other ranks give their points' extrema too
@@ -720,7 +724,8 @@ int follow_scene(const scene::Scene& scene, const RunOptions& options) {
   std::signal(SIGTERM, SIG_IGN);
   if (options.threads > 0) omp_set_num_threads(options.threads);
   std::unique_ptr<mpm::Solver> solver;
-  std::unique_ptr<Hybrid> hybrid;  // every rank steps the whole far field (rank 0 writes it)
+  // Every rank steps the far field's nodes and a share of its element work; rank 0 writes it.
+  std::unique_ptr<Hybrid> hybrid;
   try {
     solver = make_solver(scene);
     solver->distribute(options.ranks);
