@@ -76,15 +76,17 @@ void FarField::gather_state_to_root() {
   const auto slot = [&](unsigned b) {
     return I.plastic.begin() + static_cast<std::ptrdiff_t>(I.plastic_slot[b] * block);
   };
+  // Rank 0's own batches are current where they are: it sends and copies only the others'.
+  const int me = I.ranks->rank;
   std::vector<double> mine;
-  for (unsigned b = 0; b < I.batch_reporter.size(); ++b)
-    if (I.plastic_slot[b] >= 0 && I.batch_reporter[b] == I.ranks->rank)
+  for (unsigned b = 0; b < I.batch_reporter.size() && me != 0; ++b)
+    if (I.plastic_slot[b] >= 0 && I.batch_reporter[b] == me)
       mine.insert(mine.end(), slot(b), slot(b) + static_cast<std::ptrdiff_t>(block));
   const auto all = I.ranks->gather_to_root(mine);
-  if (I.ranks->rank != 0) return;
+  if (me != 0) return;
   std::vector<std::size_t> at(all.size(), 0);
   for (unsigned b = 0; b < I.batch_reporter.size(); ++b) {
-    if (I.plastic_slot[b] < 0) continue;
+    if (I.plastic_slot[b] < 0 || I.batch_reporter[b] == 0) continue;
     const auto r = static_cast<std::size_t>(I.batch_reporter[b]);
     std::copy_n(all[r].begin() + static_cast<std::ptrdiff_t>(at[r]), block, slot(b));
     at[r] += block;
