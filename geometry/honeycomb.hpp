@@ -42,6 +42,7 @@ struct HoneycombPanel {
   Point2 pattern_origin{0.0, 0.0};
   PatternOrigin origin_at = PatternOrigin::cell_center;
   bool double_walls = false;
+  double rear_gap = 0.0;  // the core ends this far above the rear facesheet
 
   Bounds front_box() const;
   Bounds core_box() const;

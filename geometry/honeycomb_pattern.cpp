@@ -51,7 +51,7 @@ Bounds HoneycombPanel::front_box() const {
 }
 Bounds HoneycombPanel::core_box() const {
   const double z1 = top - front_thickness;
-  return {{lower[0], lower[1], z1 - core_height}, {upper[0], upper[1], z1}};
+  return {{lower[0], lower[1], z1 - core_height + rear_gap}, {upper[0], upper[1], z1}};
 }
 Bounds HoneycombPanel::rear_box() const {
   const double z1 = top - front_thickness - core_height;

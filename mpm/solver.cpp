@@ -33,6 +33,7 @@ Solver::Solver(GridGeometry grid, SolverSettings settings,
     volumetric_ = std::make_unique<VolumetricAverage>(bodies);
     if (contact_) volumetric1_ = std::make_unique<VolumetricAverage>(bodies);
   }
+  if (settings_.energy_ledger) ledger_ = std::make_unique<EnergyLedger>(body_names_.size());
 }
 
 TransferContext Solver::transfer_context(const SparseGrid& grid) const {
@@ -222,6 +223,7 @@ void Solver::step(double max_dt) {
   state_.step += 1;
   remove_escaped_particles();  // books every rank's removals in point_count() too
   choose_time_step();
+  if (ledger_) ledger_->close_step(distributed() ? comm_ : nullptr, state_.ledger);
 }
 
 void Solver::bin_particles() {
@@ -312,10 +314,35 @@ void Solver::update_remapped_grid() {
 }
 
 void Solver::grid_to_particles(bool remap) {
-  auto t = timer_.scope("grid to particles");
+  if (ledger_) {
+    book_force_work();
+    ledger_->start_transfer(particles_);
+  }
+  {
+    auto t = timer_.scope("grid to particles");
+    for_each_field([&](const ParticleBins& bins, SparseGrid& grid, const VolumetricAverage*) {
+      mpm::grid_to_particles(particles_, bins, grid, transfer_context(grid), remap);
+    });
+  }
+  if (ledger_) ledger_->end_transfer(particles_);
+}
+
+// Lbar_p from the mid-step nodal velocities into mid_gradient_ (the points' own velocity gradient
+// is kept: USF's moves their domains), then W_b with the stress and volume the force scatter used.
+void Solver::book_force_work() {
+  auto t = timer_.scope("energy ledger");
+  std::swap(particles_.velocity_gradient, mid_gradient_);
+  particles_.velocity_gradient.resize(9 * particles_.size());
   for_each_field([&](const ParticleBins& bins, SparseGrid& grid, const VolumetricAverage*) {
-    mpm::grid_to_particles(particles_, bins, grid, transfer_context(grid), remap);
+    mpm::velocity_gradient(particles_, bins, grid, transfer_context(grid), NodalVelocity::mid);
   });
+  std::swap(particles_.velocity_gradient, mid_gradient_);
+  ledger_->add_force_work(particles_, mid_gradient_, dt_, failed_state());
+}
+
+const double* Solver::failed_state() const {
+  // Declared by the materials that can fail or erode a point (0 intact).
+  return particles_.has_field("failed") ? particles_.field("failed").data() : nullptr;
 }
 
 void Solver::compute_velocity_gradient(NodalVelocity which) {
@@ -337,12 +364,14 @@ void Solver::update_stress() {
   const StressContext context{dt_, state_.time, state_.step, &timer_};
   double signal = 0.0;
   std::string bad;  // the first failing point's, in material order
+  if (ledger_) ledger_->start_stress(particles_);
   for (std::size_t m = 0; m < materials_.size() && bad.empty(); ++m) {
     if (ranges_[m].size() == 0) continue;
     const StressUpdate r = materials_[m]->update_stress(particles_, ranges_[m], context);
     if (r.bad_particle >= 0) bad = failure(static_cast<std::size_t>(r.bad_particle), r.problem);
     signal = std::max(signal, r.max_signal_speed);
   }
+  if (ledger_) ledger_->end_stress(particles_, failed_state());
   max_signal_speed_ = agree_on_failure(bad, 0.0, signal);  // the largest over the ranks
 }
 
@@ -413,6 +442,10 @@ void Solver::remove_escaped_particles() {
     step[1] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     step[2] += m * particles_.internal_energy[p];
     for (int d = 0; d < 3; ++d) step[3 + d] += m * v[d];
+    if (ledger_)
+      ledger_->add_removed(
+          static_cast<std::size_t>(particles_.body[p]),
+          0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + m * particles_.internal_energy[p]);
     removal_events_.push_back({particles_.id[p],
                                particles_.body[p],
                                particles_.material[p],
@@ -549,6 +582,11 @@ EnergyReport Solver::energy() const {
   e.removed_momentum = r.momentum;
   e.removed_mass = r.mass;
   e.contact = state_.contact_work;
+  if (ledger_) {
+    e.ledger.assign(body_names_.size(), {});
+    for (std::size_t k = 0; k < state_.ledger.size(); ++k)
+      e.ledger[k / ledger::columns][k % ledger::columns] = state_.ledger[k];
+  }
   for (const auto* c : couplings_) {
     const CoupledEnergy ce = c->energy();
     e.coupled_kinetic += ce.kinetic;

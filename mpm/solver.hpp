@@ -15,6 +15,7 @@
 #include "mpm/boundary.hpp"
 #include "mpm/communicator.hpp"
 #include "mpm/contact.hpp"
+#include "mpm/energy_ledger.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_coupling.hpp"
 #include "mpm/material.hpp"
@@ -57,6 +58,8 @@ struct SolverSettings {
   bool stencil_cache = false;
   // Two velocity fields with contact between them (contact.hpp); none: one field, bodies stick.
   std::optional<ContactSettings> contact;
+  // Book each body's energy phase by phase (energy_ledger.hpp): one more gradient pass a step.
+  bool energy_ledger = false;
 };
 
 // Everything that left the domain, so that nothing is lost silently.
@@ -89,6 +92,8 @@ struct EnergyReport {
   Vec3 momentum{};  // of the particles in the domain and the coupled models, kg m/s
   Vec3 removed_momentum{};
   double mass = 0.0, removed_mass = 0.0;
+  // With SolverSettings::energy_ledger: per body, the ledger's columns (energy_ledger.hpp), J.
+  std::vector<std::array<double, ledger::columns>> ledger;
 };
 
 // A run that cannot continue: names the particle, body, material, position, time and step.
@@ -111,7 +116,8 @@ struct SolverState {
   double next_dt = 0.0;
   double first_dt = 0.0;  // the first step's, against which a collapsing step is judged
   RemovedMaterial removed;
-  double contact_work = 0.0;  // J, see EnergyReport::contact
+  double contact_work = 0.0;   // J, see EnergyReport::contact
+  std::vector<double> ledger;  // the energy ledger's totals, bodies x columns (J), if kept
 };
 
 class Solver {
@@ -255,6 +261,9 @@ class Solver {
   void move_particles();
   void remove_escaped_particles();
   void choose_time_step();
+  // The energy ledger's work of the stresses on the grid, from the mid-step nodal velocities.
+  void book_force_work();
+  const double* failed_state() const;
   // A run spread over ranks (solver_ranks.cpp).
   void share_points();
   void count_points();  // collective: the points on every rank, for point_count()
@@ -318,6 +327,8 @@ class Solver {
   // Contact only: field 1's grid and bins, and its node average.
   std::unique_ptr<BodyContact> contact_;
   std::unique_ptr<VolumetricAverage> volumetric1_;
+  std::unique_ptr<EnergyLedger> ledger_;  // SolverSettings::energy_ledger only
+  std::vector<double> mid_gradient_;      // the ledger's Lbar_p, 9 per point
   // GIMP on one velocity field: the points' stencils from the binning to the domains' stretch
   // (transfers.hpp). Invalidated by bin_particles() and move_particles() (cpGIMP's stretch).
   mutable StencilCache stencils_;

@@ -217,6 +217,9 @@ class BlockPass {
           case NodalVelocity::remapped:
             return a_.average ? gradient<NodalVelocity::remapped, true>()
                               : gradient<NodalVelocity::remapped, false>();
+          case NodalVelocity::mid:
+            return a_.average ? gradient<NodalVelocity::mid, true>()
+                              : gradient<NodalVelocity::mid, false>();
         }
         return;
       case Pass::average_scatter:
@@ -359,6 +362,8 @@ class BlockPass {
           set_row(c[d] + i, row(p) + row(grid_.values(b, node_value::f + d) + l));
         if constexpr (Which == NodalVelocity::remapped)
           set_row(c[d] + i, row(grid_.values(b, node_value::q + d) + l));
+        if constexpr (Which == NodalVelocity::mid)
+          set_row(c[d] + i, row(p) + 0.5 * row(grid_.values(b, node_value::f + d) + l));
       }
     });
     if constexpr (Average) zero_patch(c + 3, 2 * groups, region_);

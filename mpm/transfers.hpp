@@ -136,6 +136,8 @@ enum class NodalVelocity {
   start,     // p: v_I at the start of the step (USF)
   end,       // p + f: v_I + dv_I (USL)
   remapped,  // q: velocity remapped from the updated particle velocities (MUSL)
+  mid,       // p + f / 2: the mid-step velocity the internal force's work is taken at
+             // (energy_ledger.hpp)
 };
 
 // L_p = sum_I v_I (x) grad N_I(x_p), at the start-of-step positions. With `dilatation`, the same

@@ -3,7 +3,7 @@
 or the median of a field over its intact points, grouped by where each point started, at every
 snapshot time.
 
-  failure_history.py RUN --body NAME [--by radius|layer|height] [--bin "0.5 mm"] [--radius "4 mm"]
+  failure_history.py RUN --body NAME [--by radius|layer|height|wall] [--bin "0.5 mm"] [--radius "4 mm"]
                          [--axis "X,Y"]
                          [--quantity failed|outward|velocity_z|volume_ratio|pressure|principal|plastic_strain]
 
@@ -17,7 +17,11 @@ median). The groups:
   --by layer: by the z it started at (one column per point layer of a facesheet, top first),
     counting only points that started within --radius of the axis;
   --by height: by the z it started at in bins of --bin from the body's top down (a core's walls
-    along the impact axis), counting only points that started within --radius of the axis.
+    along the impact axis), counting only points that started within --radius of the axis;
+  --by wall: by its distance in plan from the nearest honeycomb wall's mid-surface (the run's
+    [[panel]]: its cell diameter, rotation and pattern origin), in bins of --bin, counting only
+    points that started within --radius of the axis: whether a facesheet fails along the walls'
+    footprint, wherever the walls stand on the grid.
 --quantity failed (default): the fraction of the group's points failed: a point counts as
 failed at a snapshot if its `failed` field is non-zero there (failed or eroded) or if it is no
 longer in the model (it left the grid). Any other quantity is the median over the group's intact
@@ -33,6 +37,7 @@ import argparse
 import json
 import pathlib
 import sys
+import tomllib
 
 import h5py
 import numpy as np
@@ -55,9 +60,49 @@ def snapshot_paths(run):
     return snapshots
 
 
-def groups(x0, by, axis, width, radius):
+def wall_distance(xy, panel):
+    """In-plane distance of each point (x, y) from the nearest wall mid-surface of a [[panel]] of
+    the resolved scene (geometry/honeycomb.hpp: centres (n D/2, m sqrt(3) D/2), n + m even, in the
+    pattern frame turned by `rotation`; the walls D/2 from each centre, normals at 0, 60, 120 deg)."""
+    D, theta = panel["cell_diameter"], panel["rotation"]
+    c, s = np.cos(theta), np.sin(theta)
+    feature = {"cell-center": (0.0, 0.0), "vertex": (0.0, D / np.sqrt(3)), "wall": (D / 2, 0.0)}
+    fx, fy = feature[panel["origin_at"]]
+    ox = panel["pattern_origin"][0] - (c * fx - s * fy)
+    oy = panel["pattern_origin"][1] - (s * fx + c * fy)
+    dx, dy = xy[:, 0] - ox, xy[:, 1] - oy
+    qx, qy = c * dx + s * dy, -s * dx + c * dy  # the pattern frame
+    row = np.sqrt(3) * D / 2
+    # The cell holding the point is the candidate centre of least hexagonal extent from it.
+    extent = np.full(len(xy), np.inf)
+    m0, n0 = np.round(qy / row), np.round(qx / (D / 2))
+    for m in (m0 - 1, m0, m0 + 1):
+        for n in (n0 - 1, n0, n0 + 1):
+            ux, uy = qx - n * D / 2, qy - m * row
+            e = np.max([np.abs(ux * np.cos(a) + uy * np.sin(a)) for a in (0, np.pi / 3, 2 * np.pi / 3)], axis=0)
+            extent = np.where((n + m) % 2 == 0, np.minimum(extent, e), extent)
+    return D / 2 - extent
+
+
+def run_panel(run):
+    """The run's one [[panel]] from its resolved scene."""
+    scene = tomllib.loads((pathlib.Path(run) / "scene.resolved.toml").read_text())
+    panels = scene.get("panel", [])
+    if len(panels) != 1:
+        raise ValueError(f"{run}: --by wall needs a run with one [[panel]], this one has {len(panels)}")
+    return panels[0]
+
+
+def groups(x0, by, axis, width, radius, panel=None):
     """Each point's group index (-1: in none) and the groups' column names."""
     r = np.hypot(x0[:, 0] - axis[0], x0[:, 1] - axis[1])
+    if by == "wall":
+        d = wall_distance(x0[:, :2], panel)
+        n = int(np.ceil(0.5 * panel["cell_diameter"] / width))
+        index = np.minimum(np.floor(d / width).astype(int), n - 1)
+        index[r >= radius] = -1
+        names = [f"w_{i * width * 1e3:g}_{(i + 1) * width * 1e3:g}_mm" for i in range(n)]
+        return index, names
     if by == "radius":
         n = int(round(radius / width))
         index = np.floor(r / width).astype(int)
@@ -128,7 +173,7 @@ def history(run, body, by, axis, width, radius, quantity="failed"):
     ids, x0 = undeformed_positions(snapshots, b)
     if ids.size == 0:
         raise ValueError(f"{snapshots[0]}: body '{body}' has no points")
-    index, names = groups(x0, by, axis, width, radius)
+    index, names = groups(x0, by, axis, width, radius, run_panel(run) if by == "wall" else None)
     r0 = np.hypot(x0[:, 0] - axis[0], x0[:, 1] - axis[1])
     counts = np.bincount(index[index >= 0], minlength=len(names))
     born = np.zeros(ids.size, dtype=bool)  # held by this or an earlier snapshot
@@ -165,7 +210,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("run", help="run directory (hvi run --out)")
     parser.add_argument("--body", required=True, help="body name as in run.json, e.g. panel.rear")
-    parser.add_argument("--by", default="radius", choices=["radius", "layer", "height"],
+    parser.add_argument("--by", default="radius", choices=["radius", "layer", "height", "wall"],
                         help="group by (default radius)")
     parser.add_argument("--bin", default="0.5 mm", help='radial or height bin width (default "0.5 mm")')
     parser.add_argument("--quantity", default="failed",

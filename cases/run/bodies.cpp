@@ -25,6 +25,7 @@ geometry::HoneycombPanel panel_geometry(const scene::PanelSettings& p) {
                 : p.origin_at == "wall" ? geometry::PatternOrigin::wall
                                         : geometry::PatternOrigin::cell_center;
   g.double_walls = p.double_walls;
+  g.rear_gap = p.rear_gap;
   return g;
 }
 

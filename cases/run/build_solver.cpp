@@ -46,6 +46,7 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
       g.dilatation == "node-average" ? mpm::Dilatation::node_average : mpm::Dilatation::particle;
   settings.stencil_cache = g.stencil_cache;
   settings.cfl = g.cfl;
+  settings.energy_ledger = scene.energy_ledger;
   if (scene.contact) {
     mpm::ContactSettings contact;
     contact.impactor.assign(scene.bodies.size(), 0);

@@ -123,6 +123,7 @@ class SceneRun {
   const scene::MeasureSettings* holes_ = nullptr;  // the holes measure, if any
   std::optional<HoleHistory> history_;  // the holes at every snapshot, when it asks for them
   std::optional<mpm::io::EnergyLog> energy_log_;
+  std::optional<mpm::io::LedgerLog> ledger_log_;  // output.energy_ledger only
   Schedule output_{0, 0}, checkpoints_{0, 0};
   double initial_energy_ = 0.0;
   RunRecord record_;  // what the scene's [[measure]]s need beyond the final state
@@ -200,9 +201,10 @@ void SceneRun::prepare_directory() {
   // the run again; by hand, `hvi measure` does.
   if (options_.overwrite || options_.resume) remove_measurements(dir_);
   if (options_.overwrite && !options_.resume) {
-    for (const char* f : {"particles.xmf", "energy.csv", "checkpoint.h5", "summary.json",
-                          "summary.toml", "timing.csv", "run.resumed.json", "resumes.jsonl",
-                          "failure.h5", "far_field.pvd", "probes.csv", hole_history_file})
+    for (const char* f :
+         {"particles.xmf", "energy.csv", "energy_ledger.csv", "checkpoint.h5", "summary.json",
+          "summary.toml", "timing.csv", "run.resumed.json", "resumes.jsonl", "failure.h5",
+          "far_field.pvd", "probes.csv", hole_history_file})
       fs::remove(dir_ / f);
     fs::remove_all(dir_ / "snapshots");
     fs::remove_all(dir_ / "far_field");
@@ -225,6 +227,8 @@ void SceneRun::open_logs() {
   if (holes != scene_.measures.end()) holes_ = &*holes;
   if (holes_ && holes_->history) history_.emplace(dir_, holes_->body, resume_step);
   energy_log_.emplace(dir_ / "energy.csv", resume_step, hybrid_ != nullptr, s.contact() != nullptr);
+  if (scene_.energy_ledger)
+    ledger_log_.emplace(dir_ / "energy_ledger.csv", s.body_names(), resume_step);
   probes_->open(dir_, resume_step);
   output_ = {scene_.output_interval, 0.0};
   checkpoints_ = {scene_.checkpoint_interval, scene_.checkpoint_interval};
@@ -279,6 +283,7 @@ int SceneRun::start_at_zero() {
   const mpm::EnergyReport e0 = s.energy();
   initial_energy_ = e0.total();
   energy_log_->write(s, e0);
+  if (ledger_log_) ledger_log_->write(s, e0);
   probes_->record(s);
   track(s, record_);
   write_snapshots();
@@ -399,6 +404,7 @@ void SceneRun::log_energy() {
   auto t = s.timer().scope("energy");
   const mpm::EnergyReport e = s.energy();
   energy_log_->write(s, e);
+  if (ledger_log_) ledger_log_->write(s, e);
   probes_->record(s);
   track(s, record_);
   if (scene_.max_energy_growth > 0 &&

@@ -317,6 +317,7 @@ Scene resolve(const toml::table& document, const std::string& file, MeshFiles me
   s.checkpoint_interval =
       optional_number(output, "checkpoint_interval").value_or(s.output_interval);
   s.energy_every = integer(output, "energy_every");
+  s.energy_ledger = output["energy_ledger"].value<bool>().value();
   s.keep_snapshots = integer(output, "keep_snapshots");
   output.insert_or_assign("interval", s.output_interval);
   output.insert_or_assign("checkpoint_interval", s.checkpoint_interval);

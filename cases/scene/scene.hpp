@@ -115,6 +115,7 @@ struct PanelSettings {
   std::string origin_at;         // cell-center | vertex | wall
   bool double_walls = false;
   std::string thin_walls;  // auto | lattice | point-type
+  double rear_gap = 0;     // the core's walls end this far above the rear facesheet, m
 };
 
 // A refinement zone ([[refinement]]).
@@ -167,6 +168,7 @@ struct Scene {
   double max_energy_growth = 0.5;
   double output_interval = 0.0, checkpoint_interval = 0.0;
   std::int64_t energy_every = 10;
+  bool energy_ledger = false;       // energy_ledger.csv (mpm/energy_ledger.hpp)
   std::int64_t keep_snapshots = 0;  // 0: all; else the first and the newest N
   GridSettings grid;
   std::vector<BoundarySettings> boundaries;

@@ -130,6 +130,16 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
     p.origin_at = text(t, "origin_at");
     p.double_walls = t["double_walls"].value<bool>().value();
     p.thin_walls = text(t, "thin_walls");
+    p.rear_gap = number(t, "rear_gap");
+    if (!(p.rear_gap < p.core_height))
+      error(path + ".rear_gap",
+            fmt::format("a gap of {} m leaves no core of height {} m: expected a gap below "
+                        "core_height",
+                        p.rear_gap, p.core_height));
+    if (p.rear_gap > 0 && far_field && text(*far_field, "panel") == p.name)
+      error(path + ".rear_gap",
+            "the far field's core stands on the rear facesheet: a gap needs the panel all "
+            "material points (no [far_field] on it)");
     for (int d = 0; d < 2; ++d)
       if (!(p.upper[d] > p.lower[d]))
         error(path + ".upper",
@@ -205,9 +215,10 @@ void read_panels(const toml::array& panels, Scene& s, const Validated& v,
         error(fmt::format("{}.{}_material", path, parts[part]), problem);
       b.particles_per_cell =
           static_cast<int>(t["particles_per_cell"].value<std::int64_t>().value());
-      b.shape = PanelPart{s.panels.size(), static_cast<PanelPart::Part>(part),
-                          Vec3{p.lower[0], p.lower[1], z[part + 1]},
-                          Vec3{p.upper[0], p.upper[1], z[part]}};
+      b.shape =
+          PanelPart{s.panels.size(), static_cast<PanelPart::Part>(part),
+                    Vec3{p.lower[0], p.lower[1], z[part + 1] + (part == 1 ? p.rear_gap : 0.0)},
+                    Vec3{p.upper[0], p.upper[1], z[part]}};
       b.clip = clip;
       b.origin = v.at(path, "");
       for (const auto& other : s.bodies)

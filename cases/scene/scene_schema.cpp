@@ -37,6 +37,11 @@ TableSpec output_table() {
   t.optional_quantity("interval", dims::time, positive(),
                       "Simulated time between particle snapshots (default: end_time / 10)")
       .integer("energy_every", closed(1, 1e9), 10, "Steps between rows of energy.csv")
+      .boolean("energy_ledger", false,
+               "Also write energy_ledger.csv: each body's energy phase by phase (the kinetic "
+               "energy of the grid-to-particle update, the work of its stresses on the grid, the "
+               "internal energy of the stress update, removals), so an energy balance that drifts "
+               "shows where; one more gradient pass a step (docs/user/output.md)")
       .optional_quantity("checkpoint_interval", dims::time, positive(),
                          "Simulated time between checkpoints (default: the snapshot interval)")
       .integer(
@@ -346,6 +351,11 @@ TableSpec panel_table() {
           "Core sampling: point-type (one layer of points on each wall mid-surface carrying the "
           "wall's volume, the paper's eq. 7), lattice, or auto (point-type when t_hc < 2 point "
           "spacings)")
+      .quantity("rear_gap", dims::length, non_negative(), 0.0,
+                "Clearance between the core and the rear facesheet: the walls end this far above "
+                "the sheet instead of standing on it (and sharing its grid nodes). 0: they stand "
+                "on it. A gap of two cells or more is an unbonded sheet, which the walls can "
+                "strike but not hold")
       .table(clip);
   return t;
 }

@@ -76,6 +76,9 @@ void write_attributes(const fs::path& tmp, const Solver& solver, const Checkpoin
   file.write_attribute("removed_kinetic", s.removed.kinetic);
   file.write_attribute("removed_internal", s.removed.internal);
   file.write_attribute("contact_work", s.contact_work);
+  file.write_attribute("ledger_size", static_cast<std::int64_t>(s.ledger.size()));
+  for (std::size_t k = 0; k < s.ledger.size(); ++k)
+    file.write_attribute("ledger_" + std::to_string(k), s.ledger[k]);
   for (int d = 0; d < 3; ++d)
     file.write_attribute("removed_momentum_" + std::to_string(d), s.removed.momentum[d]);
   for (const auto& [key, value] : extras) file.write_attribute(extra_prefix + key, value);
@@ -148,6 +151,9 @@ CheckpointExtras read_checkpoint(const fs::path& path, Solver& solver) {
   s.removed.internal = file.read_double_attribute("removed_internal");
   if (file.has_attribute("contact_work"))
     s.contact_work = file.read_double_attribute("contact_work");
+  if (file.has_attribute("ledger_size"))
+    for (std::int64_t k = 0; k < file.read_integer_attribute("ledger_size"); ++k)
+      s.ledger.push_back(file.read_double_attribute("ledger_" + std::to_string(k)));
   for (int d = 0; d < 3; ++d)
     s.removed.momentum[d] = file.read_double_attribute("removed_momentum_" + std::to_string(d));
   for (auto* c : solver.couplings())

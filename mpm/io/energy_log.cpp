@@ -15,9 +15,12 @@ std::string EnergyLog::header(bool coupled, bool contact) {
          (coupled ? ",coupled_kinetic,coupled_strain" : "") + (contact ? ",contact" : "");
 }
 
-EnergyLog::EnergyLog(const std::filesystem::path& path, std::int64_t resume_step, bool coupled,
-                     bool contact)
-    : coupled_(coupled), contact_(contact) {
+namespace {
+
+// Opens a log for writing under `header`: a new one, or for a resumed run the rows of the old one
+// up to `resume_step` (the first column is the step).
+void open_log(std::ofstream& out, const std::filesystem::path& path, const std::string& header,
+              std::int64_t resume_step) {
   std::vector<std::string> kept;
   if (resume_step >= 0) {
     std::ifstream in(path);
@@ -28,10 +31,18 @@ EnergyLog::EnergyLog(const std::filesystem::path& path, std::int64_t resume_step
       kept.push_back(line);
     }
   }
-  out_.open(path, std::ios::trunc);
-  out_ << header(coupled_, contact_) << '\n';
-  for (const auto& l : kept) out_ << l << '\n';
-  out_.flush();
+  out.open(path, std::ios::trunc);
+  out << header << '\n';
+  for (const auto& l : kept) out << l << '\n';
+  out.flush();
+}
+
+}  // namespace
+
+EnergyLog::EnergyLog(const std::filesystem::path& path, std::int64_t resume_step, bool coupled,
+                     bool contact)
+    : coupled_(coupled), contact_(contact) {
+  open_log(out_, path, header(coupled_, contact_), resume_step);
 }
 
 void EnergyLog::write(const Solver& solver, const EnergyReport& e) {
@@ -46,6 +57,30 @@ void EnergyLog::write(const Solver& solver, const EnergyReport& e) {
   if (coupled_) out_ << fmt::format(",{:.17g},{:.17g}", e.coupled_kinetic, e.coupled_strain);
   if (contact_) out_ << fmt::format(",{:.17g}", e.contact);
   out_ << '\n';
+  out_.flush();
+}
+
+LedgerLog::LedgerLog(const std::filesystem::path& path, std::vector<std::string> bodies,
+                     std::int64_t resume_step)
+    : bodies_(std::move(bodies)) {
+  std::string header = "step,time,body";
+  for (int c = 0; c < ledger::columns; ++c) header += std::string(",") + ledger::name(c);
+  open_log(out_, path, header + ",stress_error,transfer_minus_work", resume_step);
+}
+
+void LedgerLog::write(const Solver& solver, const EnergyReport& e) {
+  std::array<double, ledger::columns> all{};
+  const auto row = [&](const std::string& body, const std::array<double, ledger::columns>& r) {
+    out_ << fmt::format("{},{:.17g},{}", solver.step_count(), solver.time(), body);
+    for (const double x : r) out_ << fmt::format(",{:.17g}", x);
+    out_ << fmt::format(",{:.17g},{:.17g}\n", r[ledger::stress_internal] + r[ledger::force_work],
+                        r[ledger::transfer_kinetic] - r[ledger::force_work]);
+  };
+  for (std::size_t b = 0; b < e.ledger.size(); ++b) {
+    row(bodies_.at(b), e.ledger[b]);
+    for (int c = 0; c < ledger::columns; ++c) all[c] += e.ledger[b][c];
+  }
+  row("all", all);
   out_.flush();
 }
 

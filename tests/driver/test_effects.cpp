@@ -163,5 +163,10 @@ TEST(Effects, ContactRunsOnlyWhenNamed) {
   phases_only_when_named("contact.bodies=[\"flyer\"]", {"contact", "contact: normals"});
 }
 
+// The energy ledger (output.energy_ledger): one more gradient pass and the phases' sums.
+TEST(Effects, EnergyLedgerRunsOnlyWhenNamed) {
+  phases_only_when_named("output.energy_ledger=true", {"energy ledger"});
+}
+
 }  // namespace
 }  // namespace hvi

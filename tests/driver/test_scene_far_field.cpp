@@ -79,6 +79,11 @@ TEST(SceneFarField, ErrorsNameTheKey) {
                 "far_field.panel");
   EXPECT_NE(d.message.find("multiple of 90 deg"), std::string::npos) << d.message;
 
+  // A core lifted off the rear facesheet has no far field to match: the far field's core stands on
+  // it.
+  d = error_for({"panel.panel.rear_gap=0.4 mm"}, "panel.panel.rear_gap");
+  EXPECT_NE(d.message.find("no [far_field] on it"), std::string::npos) << d.message;
+
   d = error_for({"far_field.edges=pinned"}, "far_field.edges");
   EXPECT_NE(d.message.find("clamped"), std::string::npos) << d.message;
 

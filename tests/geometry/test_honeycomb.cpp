@@ -228,6 +228,20 @@ TEST(HoneycombCore, TurnersFoilAndDoubleWalls) {
 // The analytic inside test (nearest cell, shrunk hexagon) and the CGAL surface (2D booleans,
 // triangulation, extrusion) describe the same solid: they agree at random points, for a rotated
 // pattern with double walls cut by a clip box.
+// A rear gap (the diagnosis of the rear sheet's bond, issue #83) ends the core that far above the
+// rear facesheet, which stays where it was: the core's volume shrinks by the gap's share.
+TEST(HoneycombCore, ARearGapLiftsTheCoresFootOffTheRearSheet) {
+  HoneycombPanel p = validation_panel({-6 * mm, -6 * mm}, {6 * mm, 6 * mm}, 0.01778 * mm);
+  const HoneycombCore standing(p, p.core_box());
+  p.rear_gap = 0.4 * mm;
+  const HoneycombCore lifted(p, p.core_box());
+  EXPECT_NEAR(p.core_box().lower[2], p.rear_box().upper[2] + 0.4 * mm, 1e-15);
+  EXPECT_DOUBLE_EQ(p.rear_box().upper[2], -(0.5 + 35) * mm);
+  EXPECT_NEAR(lifted.volume() / standing.volume(), (35.0 - 0.4) / 35.0, 1e-12);
+  EXPECT_FALSE(lifted.contains({4.76 / 2 * mm, 0.0, p.rear_box().upper[2] + 0.2 * mm}));
+  EXPECT_TRUE(standing.contains({4.76 / 2 * mm, 0.0, p.rear_box().upper[2] + 0.2 * mm}));
+}
+
 TEST(HoneycombCore, InsideTestAgreesWithTheSurface) {
   HoneycombPanel p = validation_panel({-6 * mm, -5 * mm}, {7 * mm, 6 * mm});
   p.rotation = 0.3;

@@ -179,6 +179,8 @@ inline ::testing::AssertionResult identical_state(const Solver& a, const Solver&
     return ::testing::AssertionFailure() << "removed-material ledgers differ";
   if (x.contact_work != y.contact_work)
     return ::testing::AssertionFailure() << "contact work differs";
+  if (!same_bytes(x.ledger, y.ledger))
+    return ::testing::AssertionFailure() << "energy ledgers differ";
   return ::testing::AssertionSuccess();
 }
 

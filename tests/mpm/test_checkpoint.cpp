@@ -29,11 +29,12 @@ namespace fs = std::filesystem;
 constexpr int kSteps = 50;       // N
 constexpr int kCheckpoint = 25;  // k: the cube is leaving (steps ~17-30), a reorder is due
 
-SolverSettings settings_for(ShapeFunction shape, bool contact = false) {
+SolverSettings settings_for(ShapeFunction shape, bool contact = false, bool ledger = false) {
   SolverSettings s;
   s.shape = shape;
   s.reorder_interval = 5;
   if (contact) s.contact = ContactSettings{{0, 1, 0}, 0.2};  // the right sphere on its own field
+  s.energy_ledger = ledger;
   return s;
 }
 
@@ -47,6 +48,7 @@ struct RestartCase {
   bool populated;  // the fresh solver already holds the (uninitialised) scene particles
   const char* name;
   bool contact = false;  // with [contact]: its work is carried across the restart
+  bool ledger = false;   // with the energy ledger: its totals are carried across the restart
 };
 
 // Names the case in test listings (instead of a byte dump of the struct).
@@ -64,7 +66,7 @@ TEST_P(Restart, ResumedRunIsBitwiseIdentical) {
   // Uninterrupted run on one thread, writing a checkpoint at step k; the resumed run uses two
   // (a restart on another machine), which must not matter either.
   std::optional<Threads> threads(std::in_place, 1);
-  auto reference = small_scene(settings_for(c.shape, c.contact));
+  auto reference = small_scene(settings_for(c.shape, c.contact, c.ledger));
   // A field kept out of the snapshots (as a material's eos_pressure is) stays out after a resume.
   reference->particles().add_field("hidden_state", FieldKind::scalar, "1", 0.0, false);
   for (int k = 0; k < kSteps; ++k) {
@@ -76,7 +78,7 @@ TEST_P(Restart, ResumedRunIsBitwiseIdentical) {
   ASSERT_FALSE(fs::exists(file.string() + ".tmp"));
 
   // A fresh solver from the same set-up (not initialised), restored and continued to N.
-  auto resumed = small_scene_solver(settings_for(c.shape, c.contact));
+  auto resumed = small_scene_solver(settings_for(c.shape, c.contact, c.ledger));
   // Populated: the scene's particles as a driver would create them before noticing the restart.
   if (c.populated) add_small_scene_bodies(*resumed);
   threads.emplace(2);
@@ -94,6 +96,9 @@ TEST_P(Restart, ResumedRunIsBitwiseIdentical) {
   if (c.contact) {
     EXPECT_GT(reference->state().contact_work, 0.0);
   }
+  if (c.ledger) {
+    EXPECT_FALSE(reference->state().ledger.empty());
+  }
   for (const auto& f : reference->particles().real_fields()) {
     if (f.scratch) continue;
     const auto& fields = resumed->particles().real_fields();
@@ -110,7 +115,8 @@ INSTANTIATE_TEST_SUITE_P(
                       RestartCase{ShapeFunction::linear, true, "linear_populated"},
                       RestartCase{ShapeFunction::gimp, false, "gimp_empty"},
                       RestartCase{ShapeFunction::gimp, true, "gimp_populated"},
-                      RestartCase{ShapeFunction::gimp, false, "gimp_contact", true}),
+                      RestartCase{ShapeFunction::gimp, false, "gimp_contact", true},
+                      RestartCase{ShapeFunction::gimp, false, "gimp_contact_ledger", true, true}),
     [](const ::testing::TestParamInfo<RestartCase>& info) { return std::string(info.param.name); });
 
 // The removed-material ledger of the scene gains entries on both sides of the checkpoint, so the

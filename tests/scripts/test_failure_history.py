@@ -131,6 +131,36 @@ class FailureHistory(unittest.TestCase):
         self.assertEqual(code, 0)
         self.assertEqual(lines[3], "2e-06,0.0000,0.0000")
 
+    def test_by_distance_from_the_walls(self):
+        # Cells of 4 mm centred on the axis: the walls' mid-surfaces at x = +-2 mm, so the points at
+        # x = 0.25 .. 1.75 mm stand 1.75 .. 0.25 mm from a wall (one bin each of 0.5 mm).
+        pathlib.Path(self.run_dir, "scene.resolved.toml").write_text(
+            "[[panel]]\ncell_diameter = 0.004\nrotation = 0.0\npattern_origin = [0.0, 0.0]\n"
+            "origin_at = 'cell-center'\n")
+        code, lines, err = run_script(self.run_dir, "--body", "sheet", "--by", "wall", "--bin", "0.5 mm",
+                                      "--radius", "2 mm")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(lines[0], "time_s,w_0_0.5_mm,w_0.5_1_mm,w_1_1.5_mm,w_1.5_2_mm")
+        self.assertEqual(lines[2], "1e-06,0.0000,0.0000,0.5000,0.5000")  # x = 0.75 and 0.25 mm, top layer
+        self.assertEqual(lines[3], "2e-06,0.0000,0.0000,0.5000,1.0000")
+
+    def test_wall_distance_of_turned_and_shifted_patterns(self):
+        D = 4e-3
+        def panel(rotation=0.0, origin=(0.0, 0.0), at="cell-center"):
+            return {"cell_diameter": D, "rotation": rotation, "pattern_origin": list(origin), "origin_at": at}
+        xy = np.array([[1.75e-3, 0.0], [0.0, 0.0], [2.0e-3, 0.0], [0.0, 1.0e-3]])
+        d = failure_history.wall_distance(xy, panel())
+        np.testing.assert_allclose(d, [0.25e-3, 2e-3, 0.0, 2e-3 - 1e-3 * np.sin(np.pi / 3)], atol=1e-12)
+        # Turned by 30 degrees the nearest walls of the centre cell face 30 and -30 degrees.
+        d = failure_history.wall_distance(xy[:1], panel(rotation=np.pi / 6))
+        np.testing.assert_allclose(d, [2e-3 - 1.75e-3 * np.cos(np.pi / 6)], atol=1e-12)
+        # A wall's middle at the origin: the point 0.25 mm off it along x is 0.25 mm from the wall.
+        d = failure_history.wall_distance(np.array([[0.25e-3, 0.0]]), panel(at="wall"))
+        np.testing.assert_allclose(d, [0.25e-3], atol=1e-12)
+        # Shifted by half a cell of the grid: the same distances, shifted.
+        d = failure_history.wall_distance(xy[:1] + [1e-4, 0.0], panel(origin=(1e-4, 0.0)))
+        np.testing.assert_allclose(d, [0.25e-3], atol=1e-12)
+
     def test_bad_input_is_refused(self):
         code, _, err = run_script(self.run_dir, "--body", "rear")
         self.assertEqual(code, 2)
