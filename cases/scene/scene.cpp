@@ -22,6 +22,8 @@ std::string MaterialSettings::effects() const {
   if (eos != "none") out += ", " + eos + " eos";
   if (viscosity != "none") out += ", " + viscosity + " viscosity";
   if (damage != "none") out += ", " + damage + " damage";
+  if (damage_evolution != "instant") out += " with " + damage_evolution + " evolution";
+  if (scatter != "none") out += ", " + scatter + " scatter";
   if (failure != "none") out += ", " + failure + " failure";
   if (heating != "none") out += ", " + heating + " heating";
   if (erosion != "none") out += ", " + erosion + " erosion";

@@ -54,6 +54,7 @@ struct BoundarySettings {
 struct MaterialSettings {
   std::string name, library;
   std::string strength, eos, viscosity, damage, failure, heating, erosion;  // as named in the scene
+  std::string damage_evolution = "instant", scatter = "none";
   mpm::HydroModels models;  // density, elasticity, and the parameters of the named models only
   // Nothing but elasticity: simulated by the plain linear elastic material.
   bool elastic_only() const {

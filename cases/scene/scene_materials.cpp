@@ -133,6 +133,39 @@ class MaterialReader {
     h_.damage = d;
   }
 
+  void damage_evolution() {
+    auto* ft = model_table("fracture_energy", m_.damage_evolution == "fracture-energy",
+                           "damage_evolution", "fracture-energy");
+    if (!ft) return;
+    ParameterSource p(*ft, path_ + ".fracture_energy", m_.library, c_);
+    materials::FractureEnergy f;
+    f.energy = p.get("energy", std::nullopt);
+    f.band = s_.grid.cell_size;
+    if (m_.damage != "johnson-cook")
+      c_.error(path_ + ".damage_evolution",
+               "a fracture energy takes over where damage initiates: it needs damage = "
+               "\"johnson-cook\"");
+    if (m_.eos == "none")
+      c_.error(path_ + ".damage_evolution",
+               "a fracture energy softens the equation of state's tension: it needs an eos (e.g. "
+               "eos = \"mie-gruneisen\")");
+    h_.fracture_energy = f;
+  }
+
+  void scatter() {
+    auto* wt = model_table("weibull", m_.scatter == "weibull", "scatter", "weibull");
+    if (!wt) return;
+    ParameterSource p(*wt, path_ + ".weibull", m_.library, c_);
+    materials::WeibullScatter w;
+    w.modulus = p.get("modulus", std::nullopt);
+    w.seed = static_cast<std::uint64_t>((*wt)["seed"].value<std::int64_t>().value());
+    if (m_.damage != "johnson-cook" && m_.failure != "max-principal-stress")
+      c_.error(path_ + ".scatter",
+               "scatter acts on the Johnson-Cook failure strain and the max-principal-stress "
+               "limit: it needs damage = \"johnson-cook\" or failure = \"max-principal-stress\"");
+    h_.scatter = w;
+  }
+
   void failure() {
     if (auto* ft = model_table("max_principal_stress", m_.failure == "max-principal-stress",
                                "failure", "max-principal-stress")) {
@@ -243,6 +276,8 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     m.eos = text(t, "eos");
     m.viscosity = text(t, "viscosity");
     m.damage = text(t, "damage");
+    m.damage_evolution = text(t, "damage_evolution");
+    m.scatter = text(t, "scatter");
     m.failure = text(t, "failure");
     m.heating = text(t, "heating");
     m.erosion = text(t, "erosion");
@@ -252,6 +287,8 @@ void read_materials(toml::array& array, Scene& s, Checker& c) {
     r.eos();
     r.viscosity();
     r.damage();
+    r.damage_evolution();
+    r.scatter();
     r.failure();
     r.erosion();
     r.heating();

@@ -148,6 +148,23 @@ std::vector<TableSpec> model_tables() {
       .number("D4", Range{}, std::nullopt, "D4")
       .number("D5", Range{}, std::nullopt, "D5 (multiplies the homologous temperature T*)")
       .optional_quantity("reference_strain_rate", dims::rate, positive(), "Reference strain rate");
+  TableSpec fracture{
+      .name = "fracture_energy",
+      .doc =
+          "Damage evolution after initiation (materials/fracture_energy.hpp): the point softens, "
+          "its flow stress and tension scaled by (1 - omega), omega growing with the work it "
+          "does from then on per unit area of a one-cell band, and fails at omega = 1."};
+  fracture.optional_quantity("energy", dims::fracture_energy, positive(),
+                             "G_f: the energy a crack dissipates per unit area, e.g. K_c^2 / E "
+                             "from the alloy's fracture toughness (required)");
+  TableSpec weibull{.name = "weibull",
+                    .doc =
+                        "Failure thresholds with scatter (materials/weibull_scatter.hpp): each "
+                        "point's Johnson-Cook failure strain and max-principal-stress limit "
+                        "times its own factor, Weibull-distributed with mean 1, drawn from its "
+                        "id."};
+  weibull.number("modulus", positive(), std::nullopt, "m: the larger, the narrower (required)")
+      .integer("seed", closed(0, 9.0e15), 0, "Another seed draws another set of factors");
   TableSpec spall{.name = "max_principal_stress", .doc = "Max-principal-stress (spall) failure."};
   spall.optional_quantity("limit", dims::pressure, positive(),
                           "sigma_max: failure when the largest principal stress reaches it");
@@ -181,7 +198,8 @@ std::vector<TableSpec> model_tables() {
       .number("quadratic", non_negative(), 1.0, "Quadratic coefficient (AUTODYN's default)");
   std::vector<TableSpec> tables{jc};
   materials::for_each_equation_of_state([&](auto law) { tables.push_back(law_table(law)); });
-  for (auto* t : {&damage, &spall, &tuler, &heating, &viscosity, &erosion}) tables.push_back(*t);
+  for (auto* t : {&damage, &fracture, &weibull, &spall, &tuler, &heating, &viscosity, &erosion})
+    tables.push_back(*t);
   return tables;
 }
 
@@ -221,6 +239,13 @@ TableSpec material_table(const std::vector<std::string>& library_names) {
               "Artificial bulk viscosity in compression (shocks)")
       .choice("damage", {"none", "johnson-cook"}, "none",
               "Damage accumulation (eqs. 2-3); failure when D reaches 1")
+      .choice("damage_evolution", {"instant", "fracture-energy"}, "instant",
+              "What follows damage initiation (D = 1): instant failure (the paper's), or "
+              "softening until the point has dissipated [fracture_energy] per unit area of a "
+              "one-cell band, so a crack's energy does not fall with the cell")
+      .choice("scatter", {"none", "weibull"}, "none",
+              "Scatter of the failure thresholds over the points: weibull, each point's failure "
+              "strain and spall limit times its own factor of mean 1 ([weibull])")
       .choice("failure", {"none", "max-principal-stress", "tuler-butcher"}, "none",
               "Spall: max-principal-stress (instantaneous, the paper's) or tuler-butcher "
               "(time-dependent)")

@@ -369,6 +369,7 @@ constexpr std::array kNamedDims{
     NamedDim{dims::energy, "energy", "J", "1 J"},
     NamedDim{dims::specific_energy, "specific energy", "J/kg", "1 MJ/kg"},
     NamedDim{dims::specific_heat, "specific heat", "J/(kg K)", "875 J/(kg K)"},
+    NamedDim{dims::fracture_energy, "fracture energy", "J/m^2", "20 kJ/m^2"},
     NamedDim{kForce, "force", "N", "1 N"},
     NamedDim{kPower, "power", "W", "1 W"},
 };

@@ -31,6 +31,7 @@ inline constexpr Dim pressure{-1, 1, -2, 0};  // stress, modulus
 inline constexpr Dim energy{2, 1, -2, 0};
 inline constexpr Dim specific_energy{2, 0, -2, 0};  // J/kg
 inline constexpr Dim specific_heat{2, 0, -2, -1};   // J/(kg K)
+inline constexpr Dim fracture_energy{0, 1, -2, 0};  // J/m^2, energy per unit area of crack
 }  // namespace dims
 
 // A value converted to SI together with the dimension its unit expressed.

@@ -21,8 +21,10 @@ constexpr const char* plastic_work = "plastic_work";  // J/kg
 constexpr const char* viscous_work = "viscous_work";  // J/kg
 constexpr const char* temperature = "temperature";    // K
 constexpr const char* damage = "damage";
-constexpr const char* spall_damage = "spall_damage";  // Tuler-Butcher D_s
-constexpr const char* failed = "failed";              // failure_state: 0 intact, 1 failed, 2 eroded
+constexpr const char* spall_damage = "spall_damage";    // Tuler-Butcher D_s
+constexpr const char* fracture_work = "fracture_work";  // g / G_f since damage initiated
+constexpr const char* failure_scale = "failure_scale";  // the point's Weibull factor k
+constexpr const char* failed = "failed";  // failure_state: 0 intact, 1 failed, 2 eroded
 
 // Leaves a failed particle with its compressive mean stress only.
 void strip_to_compression(double* s, double& pressure) {
@@ -57,6 +59,9 @@ HydroMaterial::HydroMaterial(std::string name, HydroModels models)
       models_(std::move(models)),
       G_(models_.youngs_modulus / (2.0 * (1.0 + models_.poisson_ratio))),
       K_(models_.youngs_modulus / (3.0 * (1.0 - 2.0 * models_.poisson_ratio))),
+      tension_modulus_(models_.eos ? models_.density * materials::bulk_sound_speed_squared(
+                                                           *models_.eos, models_.density, 0.0)
+                                   : K_),
       phase_name_(phase_name()) {}
 
 void HydroMaterial::declare_fields(Particles& P) const {
@@ -69,14 +74,21 @@ void HydroMaterial::declare_fields(Particles& P) const {
   if (models_.viscosity) P.add_field(viscous_work, FieldKind::scalar, "J/kg");
   if (models_.heating) P.add_field(temperature, FieldKind::scalar, "K");
   if (models_.damage) P.add_field(damage, FieldKind::scalar, "1");
+  if (models_.fracture_energy) P.add_field(fracture_work, FieldKind::scalar, "1");
+  if (models_.scatter) P.add_field(failure_scale, FieldKind::scalar, "1");
   if (models_.tuler_butcher) P.add_field(spall_damage, FieldKind::scalar, "1");
   if (can_fail()) P.add_field(failed, FieldKind::scalar, "1");
 }
 
 void HydroMaterial::initialise(Particles& P, ParticleRange r) const {
-  if (!models_.heating) return;
-  auto& T = P.field(temperature);
-  for (std::size_t p = r.begin; p < r.end; ++p) T[p] = models_.initial_temperature;
+  if (models_.heating) {
+    auto& T = P.field(temperature);
+    for (std::size_t p = r.begin; p < r.end; ++p) T[p] = models_.initial_temperature;
+  }
+  if (models_.scatter) {
+    auto& k = P.field(failure_scale);
+    for (std::size_t p = r.begin; p < r.end; ++p) k[p] = models_.scatter->factor(P.id[p]);
+  }
 }
 
 double HydroMaterial::sound_speed(double rho_current, double p, bool is_failed) const {
@@ -122,6 +134,8 @@ struct HydroMaterial::State {
   double* T;         // temperature
   double* D;         // damage
   double* Ds;        // spall_damage
+  double* spent;     // fracture_work
+  double* k;         // failure_scale
   double* fl;        // failed
 };
 
@@ -138,6 +152,8 @@ HydroMaterial::State HydroMaterial::state(Particles& P) const {
           get(models_.heating.has_value(), temperature),
           get(models_.damage.has_value(), damage),
           get(models_.tuler_butcher.has_value(), spall_damage),
+          get(models_.fracture_energy.has_value(), fracture_work),
+          get(models_.scatter.has_value(), failure_scale),
           get(can_fail(), failed)};
 }
 
@@ -152,6 +168,8 @@ std::string HydroMaterial::phase_name() const {
           (models_.viscosity ? " + viscosity" : "");
   if (models_.heating) name += " | heating: adiabatic";
   if (models_.damage) name += " | damage: johnson-cook";
+  if (models_.fracture_energy) name += " + fracture-energy";
+  if (models_.scatter) name += " | scatter: weibull";
   if (models_.max_principal_stress) name += " | failure: max-principal-stress";
   if (models_.tuler_butcher) name += " | failure: tuler-butcher";
   if (models_.erosion) name += " | erosion: compression";
@@ -238,14 +256,17 @@ void HydroMaterial::update_deviatoric(Particles& P, std::int64_t p, const State&
       const double q_trial = von_mises(s_new);
       const double rate = std::sqrt(2.0 / 3.0 * contract_sym(D, D));
       const double temp = st.T ? st.T[p] : models_.initial_temperature;
+      // A softening point's flow stress is (1 - omega) of the intact one.
+      const double intact = st.spent ? FractureEnergy::intact(st.spent[p]) : 1.0;
       const double d_eps = materials::radial_return(
-          *jc, q_trial, G, st.eps[p], jc->rate_factor(rate), jc->thermal_factor(temp));
+          *jc, q_trial, G, st.eps[p], jc->rate_factor(rate), jc->thermal_factor(temp) * intact);
       if (d_eps > 0.0) {
         const double q = q_trial - 3.0 * G * d_eps;  // the yield stress reached
         const double scale = q / q_trial;
         for (int c = 0; c < 6; ++c) s_new[c] *= scale;
         st.eps[p] += d_eps;
         st.wp[p] += q * d_eps * inv_rho_mid;
+        soften(st, p, q * d_eps * inv_rho_mid);
       }
       st.eps_rate[p] = d_eps / dt;
     }
@@ -287,16 +308,24 @@ void HydroMaterial::update_pressure(Particles& P, std::int64_t p, const State& s
   }
   double& e = P.internal_energy[p];
   double p_new;
+  // A softening point keeps (1 - omega) of its equation of state's tension (the scene reader
+  // refuses a fracture energy without an equation of state).
+  const double intact = st.spent ? FractureEnergy::intact(st.spent[p]) : 1.0;
   if (law) {
     const double e_star = e - (0.5 * p_old + q) * dV_m;
     p_new = (eos.cold + eos.B * e_star) / (1.0 + 0.5 * eos.B * dV_m);
     if (is_failed) p_new = std::max(p_new, 0.0);
+    if (p_new < 0.0) p_new *= intact;
     e = e_star - 0.5 * p_new * dV_m;
   } else {
     p_new = p_old - K_ * trD * dt;
     if (is_failed) p_new = std::max(p_new, 0.0);
     e -= (0.5 * (p_old + p_new) + q) * dV_m;
   }
+  // Once damage has initiated, an opening is a crack's: the net work of the tension on it (the
+  // closing gives back what the opening took), with the plastic work, is what the crack
+  // dissipates.
+  if (st.spent) soften(st, p, -std::min(0.5 * (p_old + p_new), 0.0) * dV_m);
   st.pe[p] = p_new;
   double* sigma = &P.stress[6 * p];
   const double shift = p_old - p_new - q;
@@ -311,7 +340,16 @@ void HydroMaterial::update_temperature(Particles&, std::int64_t p, const State& 
   st.T[p] = models_.initial_temperature + (st.wp ? factor * st.wp[p] : 0.0);
 }
 
-// D += d eps_p / eps_f(sigma*, epsdot_p*, T*); failure at D = 1.
+// With a fracture energy, g / G_f += rho_0 L dw / G_f for the energy dw (J/kg) a point that has
+// initiated (D = 1) dissipates: its plastic work, and what its opening releases.
+void HydroMaterial::soften(const State& st, std::int64_t p, double work) const {
+  if (!st.spent || st.D[p] < 1.0) return;
+  const double share = models_.fracture_energy->share(models_.density, work);
+  st.spent[p] = std::clamp(st.spent[p] + share, 0.0, 1.0);
+}
+
+// D += d eps_p / (k eps_f(sigma*, epsdot_p*, T*)), k the point's scatter factor (1 without);
+// failure at D = 1, or with a fracture energy once the point has spent G_f (omega = 1).
 void HydroMaterial::accumulate_damage(Particles& P, std::int64_t p, const State& st,
                                       double dt) const {
   const JohnsonCookStrength* jc = models_.johnson_cook ? &*models_.johnson_cook : nullptr;
@@ -319,19 +357,21 @@ void HydroMaterial::accumulate_damage(Particles& P, std::int64_t p, const State&
   const JohnsonCookDamage& jd = *models_.damage;
   const double rate = st.eps_rate[p];
   fail_if(p, st.fl, st.pe, &P.stress[6 * p], [&](const double* sigma) {
+    if (st.spent && st.D[p] >= 1.0) return st.spent[p] >= 1.0;
     if (rate <= 0.0) return false;
     const double eq = von_mises(sigma);
     const double triaxiality = eq > 0.0 ? trace_sym(sigma) / 3.0 / eq : 0.0;
     const double T = st.T ? st.T[p] : models_.initial_temperature;
-    const double eps_f = jd.failure_strain(triaxiality, rate, jc->homologous_temperature(T));
+    const double eps_f = jd.failure_strain(triaxiality, rate, jc->homologous_temperature(T)) *
+                         (st.k ? st.k[p] : 1.0);
     st.D[p] = std::min(st.D[p] + rate * dt / eps_f, 1.0);
-    return st.D[p] >= 1.0;
+    return !st.spent && st.D[p] >= 1.0;  // softening starts here
   });
 }
 
-// Spall: failure when the largest principal stress reaches sigma_max.
+// Spall: failure when the largest principal stress reaches k sigma_max.
 void HydroMaterial::check_principal_stress(Particles& P, std::int64_t p, const State& st) const {
-  const double limit = *models_.max_principal_stress;
+  const double limit = *models_.max_principal_stress * (st.k ? st.k[p] : 1.0);
   fail_if(p, st.fl, st.pe, &P.stress[6 * p],
           [&](const double* sigma) { return materials::principal_reaches(sigma, limit); });
 }

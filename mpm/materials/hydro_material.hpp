@@ -7,7 +7,11 @@
 //              the Mie-Grüneisen EOS, eqs. 4-5) coupled to the specific internal energy
 //   viscosity  artificial bulk viscosity q (linear + quadratic) in compression
 //   heating    adiabatic: T = T0 + chi w_p / c_v from the plastic work w_p
-//   damage     Johnson-Cook (eqs. 2-3); a particle fails when D reaches 1
+//   damage     Johnson-Cook (eqs. 2-3); a particle fails when D reaches 1, or with a
+//              fracture energy softens from there and fails when it has dissipated G_f per
+//              unit area of a one-cell band (materials/fracture_energy.hpp)
+//   scatter    Weibull: each point's failure strain and spall strength times its own factor
+//              of unit mean (materials/weibull_scatter.hpp)
 //   failure    max principal stress: a particle fails when sigma_1 reaches sigma_max; or
 //              Tuler-Butcher: when the impulse of sigma_1 above sigma_0 reaches K
 //   erosion    compression: a particle crushed below V/V0 = r_min is eroded
@@ -19,9 +23,11 @@
 #include <optional>
 
 #include "materials/equation_of_state.hpp"
+#include "materials/fracture_energy.hpp"
 #include "materials/johnson_cook.hpp"
 #include "materials/johnson_cook_damage.hpp"
 #include "materials/tuler_butcher.hpp"
+#include "materials/weibull_scatter.hpp"
 #include "mpm/material.hpp"
 
 namespace hvi::mpm {
@@ -29,10 +35,12 @@ namespace hvi::mpm {
 // The laws the models below are made of (materials/).
 using materials::EosState;
 using materials::EquationOfState;
+using materials::FractureEnergy;
 using materials::JohnsonCookDamage;
 using materials::JohnsonCookStrength;
 using materials::MieGruneisen;
 using materials::TulerButcher;
+using materials::WeibullScatter;
 
 struct AdiabaticHeating {
   double specific_heat = 0;     // c_v, J/(kg K)
@@ -71,7 +79,9 @@ struct HydroModels {
   std::optional<ArtificialViscosity> viscosity;
   std::optional<AdiabaticHeating> heating;
   std::optional<JohnsonCookDamage> damage;
-  std::optional<double> max_principal_stress;  // sigma_max, Pa
+  std::optional<FractureEnergy> fracture_energy;  // after damage initiates; none: fail at D = 1
+  std::optional<WeibullScatter> scatter;          // of the failure strain and spall strength
+  std::optional<double> max_principal_stress;     // sigma_max, Pa
   std::optional<TulerButcher> tuler_butcher;
   std::optional<CompressionErosion> erosion;
 
@@ -116,6 +126,7 @@ class HydroMaterial : public Material {
   // sqrt(c_bulk^2 + 4 G / (3 rho)), without the shear wave where there is no strength.
   double wave_speed(double bulk2, double rho, bool failed) const;
   void update_temperature(Particles& P, std::int64_t p, const State& st) const;
+  void soften(const State& st, std::int64_t p, double work) const;
   void accumulate_damage(Particles& P, std::int64_t p, const State& st, double dt) const;
   void check_principal_stress(Particles& P, std::int64_t p, const State& st) const;
   void accumulate_spall(Particles& P, std::int64_t p, const State& st, double dt) const;
@@ -129,6 +140,7 @@ class HydroMaterial : public Material {
 
   HydroModels models_;
   double G_, K_;
+  double tension_modulus_;  // the bulk modulus at the reference state: a tension's stored energy
   std::string phase_name_;  // its row in the timing table
 };
 

@@ -152,6 +152,29 @@ void phases_only_when_named(const std::string& setting, const std::vector<std::s
   EXPECT_EQ(plain.datasets, named.datasets);
 }
 
+// A fracture energy and a scatter of the failure thresholds (issue #83): each its field and its
+// name in the material's phase, only when named.
+TEST(Effects, FractureEnergyAndScatterAreAllocatedComputedAndWrittenOnlyWhenNamed) {
+  const std::vector<std::string> jc = {"strength=johnson-cook", "eos=mie-gruneisen",
+                                       "damage=johnson-cook"};
+  const Effects plain = run_with(jc);
+  std::vector<std::string> both = jc;
+  for (const char* k : {"damage_evolution=fracture-energy", "fracture_energy.energy=14 kJ/m^2",
+                        "scatter=weibull", "weibull.modulus=8"})
+    both.push_back(k);
+  const Effects named = run_with(both);
+  for (const std::string f : {"fracture_work", "failure_scale"}) {
+    EXPECT_FALSE(plain.fields.count(f)) << f;
+    EXPECT_FALSE(plain.datasets.count(f)) << f;
+    EXPECT_TRUE(named.fields.count(f)) << f;
+    EXPECT_TRUE(named.datasets.count(f)) << f;
+  }
+  for (const std::string phase : {"+ fracture-energy", "scatter: weibull"}) {
+    EXPECT_FALSE(plain.runs(phase)) << phase;
+    EXPECT_TRUE(named.runs(phase)) << phase;
+  }
+}
+
 // The node-averaged dilatation (grid.dilatation): two passes over the points.
 TEST(Effects, NodeAveragedDilatationRunsOnlyWhenNamed) {
   phases_only_when_named("grid.dilatation=node-average",

@@ -108,6 +108,65 @@ failure = "tuler-butcher")"),
   }
 }
 
+// A fracture energy and a Weibull scatter: read with their units, the band the grid's cell, and
+// refused with a located reason where the models they act on are not named.
+TEST(SceneMaterials, FractureEnergyAndScatterNeedTheModelsTheyActOn) {
+  const Scene s = parse_scene(scene_with(R"(name = "m"
+library = "AA2024-T81"
+strength = "johnson-cook"
+eos = "mie-gruneisen"
+damage = "johnson-cook"
+damage_evolution = "fracture-energy"
+fracture_energy = { energy = "14.3 kJ/m^2" }
+scatter = "weibull"
+weibull = { modulus = 8, seed = 3 })"),
+                              "scene.toml");
+  const auto& h = s.materials[0].models;
+  EXPECT_DOUBLE_EQ(h.fracture_energy->energy, 14.3e3);
+  EXPECT_DOUBLE_EQ(h.fracture_energy->band, 0.5e-3);  // the scene's cell
+  EXPECT_DOUBLE_EQ(h.scatter->modulus, 8.0);
+  EXPECT_EQ(h.scatter->seed, 3u);
+  EXPECT_EQ(s.materials[0].effects(),
+            "johnson-cook strength, mie-gruneisen eos, johnson-cook damage with fracture-energy "
+            "evolution, weibull scatter");
+  const auto error = [](const std::string& material, const std::string& key) {
+    try {
+      parse_scene(scene_with(material), "scene.toml");
+    } catch (const SceneError& e) {
+      for (const auto& d : e.diagnostics())
+        if (d.key == key) return d.message;
+      return "no diagnostic for " + key + "; first: " + e.diagnostics().front().text();
+    }
+    return std::string("accepted");
+  };
+  const std::string base = "name = \"m\"\nlibrary = \"AA2024-T81\"\nstrength = \"johnson-cook\"\n";
+  EXPECT_NE(error(base + "eos = \"mie-gruneisen\"\ndamage_evolution = \"fracture-energy\"\n"
+                         "fracture_energy = { energy = \"14 kJ/m^2\" }",
+                  "material.m.damage_evolution")
+                .find("needs damage = \"johnson-cook\""),
+            std::string::npos);
+  EXPECT_NE(error(base + "damage = \"johnson-cook\"\ndamage_evolution = \"fracture-energy\"\n"
+                         "fracture_energy = { energy = \"14 kJ/m^2\" }",
+                  "material.m.damage_evolution")
+                .find("needs an eos"),
+            std::string::npos);
+  EXPECT_NE(error(base + "eos = \"mie-gruneisen\"\ndamage = \"johnson-cook\"\n"
+                         "damage_evolution = \"fracture-energy\"",
+                  "material.m.fracture_energy")
+                .find("missing parameter 'energy'"),
+            std::string::npos);
+  EXPECT_NE(
+      error(base +
+                "eos = \"mie-gruneisen\"\ndamage = \"johnson-cook\"\n"
+                "damage_evolution = \"fracture-energy\"\nfracture_energy = { energy = \"14 MPa\" }",
+            "material.m.fracture_energy.energy")
+          .find("fracture energy"),
+      std::string::npos);
+  EXPECT_NE(error(base + "scatter = \"weibull\"\nweibull = { modulus = 8 }", "material.m.scatter")
+                .find("needs damage = \"johnson-cook\" or failure = \"max-principal-stress\""),
+            std::string::npos);
+}
+
 TEST(SceneMaterials, LibraryNameTypoGetsASuggestion) {
   try {
     parse_scene(scene_with("name = \"m\"\nlibrary = \"Al6016\""), "scene.toml");
