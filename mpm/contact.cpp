@@ -9,7 +9,9 @@
 namespace hvi::mpm {
 
 BodyContact::BodyContact(const GridGeometry& geometry, ContactSettings settings)
-    : settings_(std::move(settings)), grid_(geometry) {}
+    : settings_(std::move(settings)), grid_(geometry) {
+  if (settings_.bond) bond_ = std::make_unique<BondInterface>(*settings_.bond);
+}
 
 const std::vector<std::uint8_t>& BodyContact::assign_fields(const Particles& P) {
   field_.resize(P.size());
@@ -63,11 +65,14 @@ GridNode::Vector corrected(const GridNode& n, NodalVelocity which) {
 
 }  // namespace
 
-double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
+double BodyContact::apply(SparseGrid& grid0, NodalVelocity which, double dt) {
   const auto blocks = static_cast<std::int64_t>(grid_.block_count());
   const std::size_t nodes = grid_.block_count() * SparseGrid::block_size;
   const bool remapped = which == NodalVelocity::remapped;
-  if (which == NodalVelocity::end || in_contact_.size() != nodes) in_contact_.assign(nodes, 0);
+  if (which == NodalVelocity::end || in_contact_.size() != nodes) {
+    in_contact_.assign(nodes, 0);
+    tied_.assign(nodes, 0);
+  }
   block_work_.assign(static_cast<std::size_t>(blocks), 0.0);
   const double mu = settings_.friction;
 #pragma omp parallel for schedule(static)
@@ -84,20 +89,38 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
       const std::size_t node1 =
           static_cast<std::size_t>(b) * SparseGrid::block_size + static_cast<std::size_t>(l);
       if (remapped && !in_contact_[node1]) continue;
-      // g_k of the node (transfers.hpp: three arrays of 64 per block).
+      double v0[3], v1[3];
+      velocity(n0, which, v0);
+      velocity(n1, which, v1);
+      const double M = m0 + m1;
+      // Bonded: tied, the whole relative velocity removed (the remapped velocity where the end's
+      // was tied), the end's force on the core kept for the bond's tractions.
+      if (bond_ && bond_->area(node1) > 0.0 && (!remapped || tied_[node1])) {
+        const GridNode::Vector c0 = corrected(n0, which), c1 = corrected(n1, which);
+        for (int d = 0; d < 3; ++d) {
+          const double w = v1[d] - v0[d];
+          c0[d] += (m1 / M) * w;
+          c1[d] -= (m0 / M) * w;
+          if (which == NodalVelocity::end) bond_->force(node1)[d] = -(m0 * m1 / M) * w / dt;
+        }
+        if (which == NodalVelocity::end) in_contact_[node1] = tied_[node1] = 1;
+        continue;
+      }
+      // The normal: at the bond's interface the sheet's, from the geometry; elsewhere from g_k
+      // of the node (transfers.hpp: three arrays of 64 per block).
       const auto normal = [&](const std::vector<double>& g, std::size_t block, int d) {
         return g[(3 * block + static_cast<std::size_t>(d)) * SparseGrid::block_size +
                  static_cast<std::size_t>(l)];
       };
       double n[3];
+      const bool interface = bond_ && bond_->interface(node1);
       for (int d = 0; d < 3; ++d)
-        n[d] = normal(normal1_, static_cast<std::size_t>(b), d) - normal(normal0_, b0, d);
+        n[d] =
+            interface ? bond_->normal(node1)[d]
+                      : normal(normal1_, static_cast<std::size_t>(b), d) - normal(normal0_, b0, d);
       const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(length > 0.0)) continue;
       for (double& c : n) c /= length;
-      double v0[3], v1[3];
-      velocity(n0, which, v0);
-      velocity(n1, which, v1);
       // In the relative velocity w = v1 - v0, which stays well conditioned when one field's mass at
       // the node is a GIMP tail many orders below the other's: v1 - v_cm = (m0 / M) w.
       double w[3], wn = 0.0;
@@ -118,7 +141,6 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
       const double t_change = t_length > 0.0 ? std::min(mu * std::fabs(wn), t_length) : 0.0;
       const double slip = t_length > 0.0 ? t_change / t_length : 0.0;
       // dw: the change of the relative velocity; field 1 takes m0 / M of it, field 0 m1 / M.
-      const double M = m0 + m1;
       const GridNode::Vector c0 = corrected(n0, which), c1 = corrected(n1, which);
       for (int d = 0; d < 3; ++d) {
         const double dw = -wn * n[d] - slip * tangent[d];
@@ -138,7 +160,8 @@ double BodyContact::apply(SparseGrid& grid0, NodalVelocity which) {
 
 std::size_t BodyContact::bytes() const {
   return grid_.bytes() + bins_.bytes() + field_.capacity() + in_contact_.capacity() +
-         meeting0_.capacity() + meeting1_.capacity() +
+         tied_.capacity() + (bond_ ? bond_->bytes() : 0) + meeting0_.capacity() +
+         meeting1_.capacity() +
          (normal0_.capacity() + normal1_.capacity() + block_work_.capacity()) * sizeof(double);
 }
 

@@ -29,7 +29,11 @@
 // lose some: the thin-wall hard case's balance is -2.7% with contact, +1.3% without); friction
 // heat, the friction impulse times the slip it leaves, is booked so the balance closes.
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
+
+#include "mpm/bond.hpp"
 
 #include "mpm/grid.hpp"
 #include "mpm/particle_bins.hpp"
@@ -41,6 +45,8 @@ namespace hvi::mpm {
 struct ContactSettings {
   std::vector<std::uint8_t> impactor;  // per body: 1 if it belongs to field 1
   double friction = 0.0;               // Coulomb coefficient mu
+  // Field 1 is a core bonded to field 0's facesheets (bond.hpp): tied where still bonded.
+  std::optional<BondSettings> bond;
 };
 
 class BodyContact {
@@ -63,8 +69,12 @@ class BodyContact {
 
   // Corrects the nodal velocity `which` (start: p, end: p + f via f, remapped: q) of both fields
   // at every node where they approach; the remapped velocity at every node where the end
-  // velocity was corrected. Returns the friction heat of an end correction (J; 0 otherwise).
-  double apply(SparseGrid& grid0, NodalVelocity which);
+  // velocity was corrected. With a bond, ties them where bonded whatever their motion (the end
+  // correction's force over the step `dt` kept for the bond's tractions). Returns the friction
+  // heat of an end correction (J; 0 otherwise).
+  double apply(SparseGrid& grid0, NodalVelocity which, double dt);
+  // With a bond (else nullptr): the interface, prepared once the step's grids are binned.
+  BondInterface* bond() { return bond_.get(); }
   // The friction heat of the last correction per field-1 block (0 but for an end correction).
   const std::vector<double>& block_work() const { return block_work_; }
   bool has_friction() const { return settings_.friction > 0.0; }
@@ -79,7 +89,9 @@ class BodyContact {
   std::vector<double> normal0_, normal1_;  // g_k per node, in each grid's node storage order
   std::vector<double> block_work_;
   std::vector<std::uint8_t> in_contact_;  // per field-1 node: corrected at the end stage this step
+  std::vector<std::uint8_t> tied_;        // per field-1 node: tied by the bond at the end stage
   std::vector<std::uint8_t> meeting0_, meeting1_;  // per owner block of each field: near the other
+  std::unique_ptr<BondInterface> bond_;
 };
 
 }  // namespace hvi::mpm

@@ -269,13 +269,20 @@ void Solver::particles_to_grid(Scatter what) {
     contact_->compute_normals(particles_, bins_, grid_, transfer_context(grid_),
                               transfer_context(contact_->grid()));
   }
+  if (contact_ && contact_->bond() && what != Scatter::force) {
+    auto t = timer_.scope("bond");
+    contact_->bond()->prepare(particles_, contact_->grid(), settings_.shape, half_width_,
+                              distributed() ? comm_ : nullptr);
+  }
 }
 
 void Solver::apply_contact(NodalVelocity which) {
   if (!contact_) return;
   auto t = timer_.scope("contact");
-  const double work = contact_->apply(grid_, which);
+  const double work = contact_->apply(grid_, which, dt_);
   state_.contact_work += distributed() ? contact_work_over_ranks(which) : work;
+  if (contact_->bond() && which == NodalVelocity::end)
+    contact_->bond()->break_overloaded(particles_, contact_->grid(), settings_.shape, half_width_);
   apply_grid_conditions(contact_->grid(), boundaries_);
   apply_grid_conditions(grid_, boundaries_);
 }

@@ -54,6 +54,13 @@ std::unique_ptr<mpm::Solver> make_solver(const scene::Scene& scene) {
     contact.friction = scene.contact->friction;
     settings.contact = contact;
   }
+  if (scene.bond) {  // the bonded core on field 1
+    mpm::ContactSettings contact;
+    contact.impactor.assign(scene.bodies.size(), 0);
+    contact.impactor.at(core_body(scene, scene.bond->panel)) = 1;
+    contact.bond = mpm::BondSettings{scene.bond->normal_strength, scene.bond->shear_strength};
+    settings.contact = contact;
+  }
   if (g.max_time_step) settings.max_time_step = *g.max_time_step;
 
   std::vector<mpm::GridBoundary> boundaries;
@@ -142,7 +149,39 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
     counts.push_back(n);
     solids[b].reset();
   }
+  if (scene.bond) mark_bond_interface(scene, P);
   return counts;
+}
+
+std::size_t core_body(const scene::Scene& scene, std::size_t panel) {
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (const auto* part = std::get_if<scene::PanelPart>(&scene.bodies[b].shape))
+      if (part->panel == panel && part->part == scene::PanelPart::core) return b;
+  throw std::logic_error("a panel without its core body");
+}
+
+// The core's points within a point spacing s of a facesheet: each bonded, with the strip's area
+// under its wall, a_p = (V_p / s) width / t_hc (a point-type wall point holds t_hc s_along s), and
+// the normal from the core into the sheet.
+void mark_bond_interface(const scene::Scene& scene, mpm::Particles& P) {
+  const scene::BondSceneSettings& bond = *scene.bond;
+  const scene::PanelSettings& panel = scene.panels.at(bond.panel);
+  const auto core = static_cast<std::int64_t>(core_body(scene, bond.panel));
+  const double s = scene.grid.cell_size / scene.bodies.at(core).particles_per_cell;
+  const double front = panel.top - panel.front_thickness, rear = front - panel.core_height;
+  mpm::BondInterface::declare_fields(P);
+  auto& area = P.field(mpm::bond_field::area);
+  auto& normal = P.field(mpm::bond_field::normal);
+  auto& bonded = P.field(mpm::bond_field::bonded);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    if (P.body[p] != core) continue;
+    const double z = P.position[3 * p + 2];
+    const double side = z - rear < s ? -1.0 : front - z < s ? 1.0 : 0.0;
+    if (side == 0.0) continue;
+    area[p] = P.volume0[p] / s * bond.width / panel.wall_thickness;
+    normal[3 * p + 2] = side;
+    bonded[p] = 1.0;
+  }
 }
 
 }  // namespace hvi::driver

@@ -33,4 +33,9 @@ std::vector<std::size_t> add_bodies(const scene::Scene& scene, mpm::Solver& solv
                                     std::vector<std::string>* warnings = nullptr,
                                     PointShare share = {});
 
+// With [bond]: the index of the bonded panel's core among the scene's bodies, and its points at
+// the facesheets marked as the bond's interface (mpm/bond.hpp; add_bodies calls it).
+std::size_t core_body(const scene::Scene& scene, std::size_t panel);
+void mark_bond_interface(const scene::Scene& scene, mpm::Particles& particles);
+
 }  // namespace hvi::driver

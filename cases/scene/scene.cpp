@@ -157,6 +157,33 @@ void read_contact(const toml::table& t, Scene& s, Checker& c) {
   s.contact = contact;
 }
 
+// [bond] names a panel of the scene that the far field does not hold; it takes the second
+// velocity field, so it excludes [contact].
+void read_bond(const toml::table& t, Scene& s, Checker& c) {
+  BondSceneSettings b;
+  const std::string name = text(t, "panel");
+  std::string known;
+  for (const auto& p : s.panels) known += (known.empty() ? "'" : ", '") + p.name + "'";
+  b.panel = s.panels.size();
+  for (std::size_t p = 0; p < s.panels.size(); ++p)
+    if (s.panels[p].name == name) b.panel = p;
+  if (b.panel == s.panels.size())
+    c.error("bond.panel", fmt::format("no [[panel]] named '{}'; panels: {}", name,
+                                      known.empty() ? "none" : known));
+  else if (s.far_field && s.far_field->panel == b.panel)
+    c.error("bond.panel",
+            "the far field's panel has no core of points to bond: bond a panel "
+            "that is all material points");
+  if (s.contact)
+    c.error("bond",
+            "a bond puts the core on the second velocity field, which [contact] takes "
+            "too: name one of them");
+  b.normal_strength = number(t, "normal_strength");
+  b.shear_strength = number(t, "shear_strength");
+  b.width = number(t, "width");
+  s.bond = b;
+}
+
 void read_bodies(const toml::array& array, Scene& s, Checker& c) {
   for (std::size_t i = 0; i < array.size(); ++i) {
     const toml::table& t = *array[i].as_table();
@@ -303,6 +330,7 @@ Scene resolve(const toml::table& document, const std::string& file, MeshFiles me
   if (s.bodies.empty()) c.error("body", "a scene needs at least one [[body]] or [[panel]]");
   detail::read_refinements(*r["refinement"].as_array(), s, v, c.errors);
   if (const toml::table* contact = r["contact"].as_table()) read_contact(*contact, s, c);
+  if (const toml::table* bond = r["bond"].as_table()) read_bond(*bond, s, c);
   {
     std::vector<std::string> body_names;
     for (const auto& b : s.bodies) body_names.push_back(b.name);

@@ -161,6 +161,13 @@ struct ContactSettings {
   double friction = 0.0;
 };
 
+// [bond]: a panel's core bonded to its facesheets (mpm/bond.hpp).
+struct BondSceneSettings {
+  std::size_t panel = 0;                               // index into Scene::panels
+  double normal_strength = 0.0, shear_strength = 0.0;  // Pa
+  double width = 0.0;                                  // of the bonded strip under each wall, m
+};
+
 struct Scene {
   std::string file;
   std::string title;
@@ -179,6 +186,7 @@ struct Scene {
   std::vector<RefinementSettings> refinements;
   std::optional<FarFieldSettings> far_field;  // none: a pure MPM scene
   std::optional<ContactSettings> contact;     // none: one velocity field
+  std::optional<BondSceneSettings> bond;      // none: walls and sheets share their nodes
   toml::table resolved;  // every key, defaults filled, SI values: written next to the output
   std::vector<std::string> warnings;  // likely mistakes that are not errors ("no EOS at 5 km/s")
   std::vector<MeasureSettings> measures;  // [[measure]]: quantities of interest at the end

@@ -494,6 +494,30 @@ TableSpec contact_table() {
   return t;
 }
 
+// A panel's core bonded to its facesheets, on a velocity field of its own (mpm/bond.hpp).
+TableSpec bond_table() {
+  TableSpec t{
+      .name = "bond",
+      .doc =
+          "The bond between a [[panel]]'s core and its facesheets (mpm/bond.hpp): the core "
+          "moves on a velocity field of its own, tied to the sheets (no slip, no separation) "
+          "where its points at the sheets are still bonded; a point's bond breaks for good "
+          "when its traction passes (sigma_n / normal_strength)^2 + (tau / shear_strength)^2 "
+          "= 1, and from then on core and sheets meet by contact, with the sheet's normal. "
+          "Elsewhere, the core meets everything else (the projectile, the debris) by contact "
+          "too. Absent: walls and sheets share their grid nodes, welded (the paper's). Not "
+          "with [contact]."};
+  t.string_required("panel", "The [[panel]] whose core is bonded")
+      .quantity_required("normal_strength", dims::pressure, positive(),
+                         "S_n: the adhesive's strength in tension across the bond")
+      .quantity_required("shear_strength", dims::pressure, positive(),
+                         "S_s: its strength in shear along the bond")
+      .quantity_required("width", dims::length, positive(),
+                         "The bonded strip's width under each wall (the foil and its adhesive "
+                         "fillets): the panel's flatwise strength is S_n width 2 / D_hc");
+  return t;
+}
+
 // Zones where bodies are sampled with more points per cell (paper Fig. 4).
 TableSpec refinement_table() {
   const TableSpec box = box_table("An axis-aligned box zone.");
@@ -532,6 +556,7 @@ TableSpec make_schema() {
       .table(refinement_table())
       .table(far_field_table())
       .table(contact_table())
+      .table(bond_table())
       .table(measure_table());
   return root;
 }

@@ -133,6 +133,24 @@ TEST(RunOnRanks, NodeAverageAndContactWriteTheOneRankRunsBytes) {
   expect_same_output(one, spread, 4);
 }
 
+// The core's bond ([bond]): each rank gathers every interface point and sums the node areas in id
+// order, so the demo with its core bonded, and the energy ledger's sums, write the one-rank run's
+// bytes on 2 ranks (the bonds the sphere breaks in the front sheet among them).
+TEST(RunOnRanks, ABondedCoreAndTheEnergyLedgerWriteTheOneRankRunsBytes) {
+  if (std::string(HVI_MPIEXEC).empty()) GTEST_SKIP() << "hvi is built without MPI";
+  const fs::path one = scratch("ranks_bond_one"), spread = scratch("ranks_bond_spread");
+  const fs::path log = scratch("ranks_bond_log.txt");
+  const std::string args =
+      " --threads 1 --set bond.panel=panel --set 'bond.normal_strength=40 MPa'"
+      " --set 'bond.shear_strength=30 MPa' --set 'bond.width=0.3 mm'"
+      " --set output.energy_ledger=true" +
+      shortened;
+  ASSERT_EQ(run("run " + demo + " --out " + one.string() + args), 0);
+  ASSERT_EQ(on_ranks(2, "run " + demo + " --out " + spread.string() + args, log), 0) << read(log);
+  expect_same_output(one, spread, 4);
+  EXPECT_TRUE(read(one / "energy_ledger.csv") == read(spread / "energy_ledger.csv"));
+}
+
 // A hybrid ([far_field]): every rank steps the whole far field, and each tie reads its grid node
 // on the rank owning the node's block (coupling/far_field_coupling.hpp). With failing J2
 // facesheets and a failing core (their plastic state and damage are in the checkpoint), a run

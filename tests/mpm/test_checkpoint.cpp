@@ -33,7 +33,8 @@ SolverSettings settings_for(ShapeFunction shape, bool contact = false, bool ledg
   SolverSettings s;
   s.shape = shape;
   s.reorder_interval = 5;
-  if (contact) s.contact = ContactSettings{{0, 1, 0}, 0.2};  // the right sphere on its own field
+  if (contact)
+    s.contact = ContactSettings{{0, 1, 0}, 0.2, std::nullopt};  // the right sphere on its own field
   s.energy_ledger = ledger;
   return s;
 }

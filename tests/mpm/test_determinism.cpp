@@ -33,7 +33,7 @@ SceneRun run_scene(ShapeFunction shape, UpdateScheme scheme, int threads, int re
   settings.dilatation = dilatation;
   // The right sphere on a velocity field of its own, with friction, so that every branch of the
   // correction runs.
-  if (contact) settings.contact = ContactSettings{{0, 1, 0}, 0.2};
+  if (contact) settings.contact = ContactSettings{{0, 1, 0}, 0.2, std::nullopt};
   settings.reorder_interval = reorder_interval;
   SceneRun r{small_scene_solver(settings), {}};
   add_small_scene_bodies(*r.solver, sphere_speed);

@@ -98,7 +98,7 @@ TEST_P(DistributedRun, IsBitwiseTheOneRankRun) {
   settings.scheme = GetParam().scheme;
   settings.dilatation = GetParam().dilatation;
   if (GetParam().friction >= 0.0)
-    settings.contact = ContactSettings{{0, 1, 0}, GetParam().friction};
+    settings.contact = ContactSettings{{0, 1, 0}, GetParam().friction, std::nullopt};
   settings.reorder_interval = 7;
   const Outcome one = run(settings, nullptr);
   // What the scene promises: the cube left during the run, the sphere struck the plate.
