@@ -44,6 +44,7 @@
 #include "cases/cli/geometry_command.hpp"
 #include "cases/cli/limit_cli.hpp"
 #include "cases/cli/probe_command.hpp"
+#include "cases/cli/settled_command.hpp"
 #include "cases/cli/sweep_command.hpp"
 #include "cases/parallel/mpi_communicator.hpp"
 #include "cases/parallel/mpi_file_access.hpp"
@@ -181,6 +182,7 @@ struct Commands {
   std::unique_ptr<hvi::driver::FitCli> fit;
   std::unique_ptr<hvi::driver::ProbeCli> probe;
   std::unique_ptr<hvi::driver::UnitsCli> units;
+  std::unique_ptr<hvi::driver::SettledCli> settled;
   std::unique_ptr<hvi::driver::ValidateCli> validate;
   std::unique_ptr<hvi::driver::BallisticLimitCli> ballistic_limit;
 };
@@ -295,6 +297,7 @@ void add_analysis_commands(CLI::App& app, Commands& c) {
   c.fit = hvi::driver::add_fit_command(app);
   c.probe = hvi::driver::add_probe_command(app);
   c.units = hvi::driver::add_units_command(app);
+  c.settled = hvi::driver::add_settled_command(app);
 }
 
 // hvi run: a scene, or the run in --resume DIR with its resolved scene; under an MPI launcher,
@@ -351,6 +354,7 @@ int dispatch(Commands& c, const std::string& command_line, const hvi::parallel::
   if (*c.fit->command) return hvi::driver::fit_command(c.fit->options);
   if (*c.probe->command) return c.probe->execute();
   if (*c.units->command) return c.units->execute();
+  if (*c.settled->command) return c.settled->execute();
   if (*c.convergence_cmd) {
     c.convergence.hvi = std::filesystem::canonical("/proc/self/exe").string();
     return hvi::driver::run_convergence(c.convergence);

@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "cases/run/hole_history.hpp"  // default_spall_min_points
+
 namespace hvi::driver {
 
 enum class Criterion { hole, spall, either };
@@ -26,8 +28,6 @@ struct RearOutcome {
   // "P (hole)", "P (spall)", "P (hole and spall)" or "NP", under criterion c.
   std::string text(Criterion c) const;
 };
-
-constexpr long default_spall_min_points = 8;  // 2 x 2 x 2 points: the smallest resolved fragment
 
 // nullopt when the run has no measurements.csv or it lacks the rear sheet's columns.
 std::optional<RearOutcome> read_rear_outcome(const std::filesystem::path& run_dir,

@@ -13,6 +13,10 @@
 
 namespace hvi::driver {
 
+// Detached spall counts from 2 x 2 x 2 points, the smallest resolved fragment (the experiments' P
+// by spall, cases/cli/rear_outcome.hpp).
+inline constexpr long default_spall_min_points = 8;
+
 class HoleHistory {
  public:
   // `front`: the holes measure's body (empty: the panel's facesheets). resume_step < 0: a new run,

@@ -25,6 +25,7 @@
 #include "cases/run/measures.hpp"
 #include "cases/run/probes.hpp"
 #include "cases/run/run_output.hpp"
+#include "cases/run/settle.hpp"
 #include "mpm/io/checkpoint.hpp"
 #include "mpm/io/energy_log.hpp"
 #include "mpm/io/snapshot_writer.hpp"
@@ -86,6 +87,7 @@ class SceneRun {
 
  private:
   bool at_end() const { return solver_->time() >= end_ * (1 - 1e-12); }
+  bool done() const { return at_end() || settled_.has_value(); }  // the end time, or settled
   double elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
   }
@@ -122,6 +124,8 @@ class SceneRun {
   std::optional<mpm::io::SnapshotWriter> snapshots_;
   const scene::MeasureSettings* holes_ = nullptr;  // the holes measure, if any
   std::optional<HoleHistory> history_;  // the holes at every snapshot, when it asks for them
+  std::optional<SettleCheck> settle_;   // measure.<holes>.stop_when_settled only
+  std::optional<std::string> settled_;  // why the rear sheet has settled, once it has
   std::optional<mpm::io::EnergyLog> energy_log_;
   std::optional<mpm::io::LedgerLog> ledger_log_;  // output.energy_ledger only
   Schedule output_{0, 0}, checkpoints_{0, 0};
@@ -226,6 +230,13 @@ void SceneRun::open_logs() {
                                   [](const auto& m) { return m.kind == "holes"; });
   if (holes != scene_.measures.end()) holes_ = &*holes;
   if (holes_ && holes_->history) history_.emplace(dir_, holes_->body, resume_step);
+  if (history_ && holes_->stop_when_settled) {
+    settle_.emplace(*holes_->stop_when_settled, holes_->settle_tolerance);
+    if (options_.resume) {
+      settle_->load(dir_ / hole_history_file);  // the rows up to the checkpoint
+      settled_ = settle_->settled();
+    }
+  }
   energy_log_.emplace(dir_ / "energy.csv", resume_step, hybrid_ != nullptr, s.contact() != nullptr);
   if (scene_.energy_ledger)
     ledger_log_.emplace(dir_ / "energy_ledger.csv", s.body_names(), resume_step);
@@ -310,7 +321,7 @@ int SceneRun::time_loop() {
   first_step_ = s.step_count();
   int code = success;
   try {
-    while (s.time() < end_ * (1 - 1e-12)) {
+    while (!done()) {
       if (stop_signal != 0) {
         code = stop_signal == SIGTERM ? terminated : interrupted;
         break;
@@ -359,8 +370,10 @@ void SceneRun::step() {
   report_removals(s, s.take_removal_events(), reported_removals_);
   if (hybrid_ && hybrid_->growing()) grow_zone();
   const bool last = at_end();
-  if (s.step_count() % scene_.energy_every == 0 || last) log_energy();
+  const bool logged = s.step_count() % scene_.energy_every == 0 || last;
+  if (logged) log_energy();
   if (output_.due(s.time()) || last) write_output();
+  if (settled_ && !logged) log_energy();  // the run ends here: its energy.csv row
   if (checkpoints_.due(s.time())) {
     checkpoints_.advance(s.time());
     checkpoint(elapsed());
@@ -445,6 +458,12 @@ void SceneRun::measure_holes() {
   auto t = solver_->timer().scope("measure the holes");
   const Measurements& m = history_->add();
   fmt::print("  holes at t = {:.4g} us: {}\n", m.time * 1e6, hole_summary(m));
+  if (!settle_) return;
+  if (const auto state = rear_state(m)) settle_->add(*state);
+  settled_ = settle_->settled();
+  if (settled_)
+    fmt::print("  the rear sheet has settled ({}): the run stops (measure.{}.stop_when_settled)\n",
+               *settled_, holes_->name);
 }
 
 void SceneRun::write_snapshots() {
@@ -513,11 +532,13 @@ int SceneRun::finish(int code) {
   for (const auto& [name, value] : measured) fmt::print("  measure {} = {:.8g}\n", name, value);
   fmt::print("\n{}\n", s.timer().table());
   write_timing(dir_, s.timer());
-  const bool finished = !stopped_by_signal(code) && at_end();
-  const bool stopped_early = stopped_by_signal(code) || (scene_.max_steps > 0 && !at_end());
-  toml::table summary_table =
-      summary(stopped_by_signal(code) ? "interrupted" : (finished ? "finished" : "stopped"), rate,
-              peak_memory, balance);
+  const bool finished = !stopped_by_signal(code) && done();
+  const bool stopped_early = stopped_by_signal(code) || (scene_.max_steps > 0 && !done());
+  const char* status = stopped_by_signal(code) ? "interrupted"
+                       : !finished             ? "stopped"
+                       : at_end()              ? "finished"
+                                               : "settled";
+  toml::table summary_table = summary(status, rate, peak_memory, balance);
   if (holes_ && finished) measure_final_holes(summary_table, measured, peak_memory);
   toml::table measures;
   for (const auto& [name, value] : measured) measures.insert(name, value);
@@ -542,7 +563,10 @@ void SceneRun::print_result(int code, double rate, std::size_t peak_memory,
   fmt::print(
       "hvi: {} at t = {:.6g} s, step {}: {} steps in {:.2f} s ({:.3g} particle-steps/s, {} "
       "threads, peak memory {:.0f} MB)\n",
-      stopped_by_signal(code) ? "interrupted" : (at_end() ? "finished" : "stopped (run.max_steps)"),
+      stopped_by_signal(code) ? "interrupted"
+      : at_end()              ? "finished"
+      : settled_              ? "settled"
+                              : "stopped (run.max_steps)",
       s.time(), s.step_count(), s.step_count() - first_step_, wall_, rate, threads_,
       peak_memory / 1e6);
   if (options_.resume)
@@ -636,6 +660,7 @@ toml::table SceneRun::summary(const char* status, double rate, std::size_t peak_
                       {"removed_mass", s.removed().mass},
                       {"status", status}};
   if (!std::isnan(earlier_wall_)) summary.insert("wall_seconds_total", earlier_wall_ + wall_);
+  if (settled_) summary.insert("settled", *settled_);  // why it stopped before the end time
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
                   [](const auto& m) { return m.erosion != "none"; })) {
     // What erosion took out of the stress field (the points stay, as point masses).

@@ -33,6 +33,11 @@ TableSpec measure_table() {
                "Holes: also measure every snapshot as the run writes it, one row each in "
                "holes_history.csv "
                "(the columns of hvi measure's measurements_history.csv)")
+      .optional_quantity("stop_when_settled", dims::time, positive(),
+                         "Holes with history: stop the run once the rear sheet's outcome and hole "
+                         "(or bulge) have stayed within settle_tolerance for this long")
+      .number("settle_tolerance", closed(1e-6, 0.5), 0.02,
+              "Holes with stop_when_settled: relative change of D_r (or the bulge) still settled")
       .vector("point", dims::length, std::nullopt,
               "Displacement: the probe's point in the undeformed configuration; its `axis` "
               "component is "
@@ -56,6 +61,8 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
     m.offset = t["offset"].value<double>().value();
     m.surface = t["surface"].value<bool>().value();
     m.history = t["history"].value<bool>().value();
+    m.stop_when_settled = t["stop_when_settled"].value<double>();
+    m.settle_tolerance = t["settle_tolerance"].value<double>().value();
     m.from = t["from"].value<double>();
     m.to = t["to"].value<double>();
     const toml::array& c = *t["center"].as_array();
@@ -76,6 +83,10 @@ std::vector<MeasureSettings> read_measures(const toml::array& tables, const Vali
     if (m.history && m.kind != "holes")
       errors.push_back(
           v.at(path + ".history", "`history` belongs to a holes measure (kind = \"holes\")"));
+    if (m.stop_when_settled && !m.history)
+      errors.push_back(v.at(path + ".stop_when_settled",
+                            "the rear sheet is judged settled on the holes history: "
+                            "stop_when_settled needs history = true (and kind = \"holes\")"));
     if (m.kind == "holes" &&
         std::any_of(out.begin(), out.end(), [](const auto& o) { return o.kind == "holes"; }))
       errors.push_back(

@@ -36,6 +36,9 @@ struct MeasureSettings {
   double offset = 0.0;
   bool surface = false;
   bool history = false;  // holes: measured at every snapshot as the run writes it
+  // holes with history: stop once the rear sheet has settled over this time (cases/run/settle.hpp)
+  std::optional<double> stop_when_settled;
+  double settle_tolerance = 0.02;
   std::optional<double> from, to;
   std::array<double, 3> center{};
   std::optional<std::array<double, 3>> point;  // displacement

@@ -289,6 +289,20 @@ TEST(Scene, HolesMeasureNeedsAPanelOrAPlate) {
   EXPECT_EQ(s.measures.at(0).body, "ball");
 }
 
+// Stopping once settled is judged on the holes history: without it the key is refused at its line,
+// with it the window and tolerance read back in SI.
+TEST(Scene, StoppingWhenSettledNeedsTheHoleHistory) {
+  const std::string holes =
+      "\n[[measure]]\nname = \"holes\"\nkind = \"holes\"\nbody = \"ball\"\n"
+      "stop_when_settled = \"3 us\"\n";
+  const Diagnostic d = error_for(valid + holes, "measure.holes.stop_when_settled");
+  EXPECT_TRUE(contains(d.message, "needs history = true")) << d.text();
+  const Scene s =
+      parse_scene(valid + holes + "history = true\nsettle_tolerance = 0.01\n", "scene.toml");
+  EXPECT_EQ(s.measures.at(0).stop_when_settled, 3e-6);
+  EXPECT_EQ(s.measures.at(0).settle_tolerance, 0.01);
+}
+
 TEST(Scene, UnknownResolutionNamesTheOnesDefined) {
   const Diagnostic d = first_error(with_resolutions, {"resolution=paper"});
   EXPECT_EQ(d.key, "resolution");
