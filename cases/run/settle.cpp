@@ -21,6 +21,8 @@ std::optional<RearState> rear_state(const Measurements& m) {
     s.equivalent = m.rear->hole.equivalent_diameter;
   }
   if (m.bulge) s.bulge = m.bulge->displacement;
+  for (const auto& [name, value] : m.variables)
+    if (name == "t_r") s.thickness = value;
   return s;
 }
 
@@ -32,6 +34,7 @@ std::vector<std::pair<RearState, long long>> read_rear_states(
   const int time = t.column("time"), step = t.column("step"), hole = t.column("rear_perforated"),
             D = t.column("D_r"), equivalent = t.column("D_r_equivalent"), bulge = t.column("bulge"),
             spall = t.column("rear_spall_particles");
+  const int thickness = t.column("t_r");  // absent or empty: the scene does not give it
   if (time < 0 || step < 0 || hole < 0 || D < 0 || equivalent < 0 || bulge < 0 || spall < 0)
     throw std::invalid_argument(fmt::format(
         "{}: not a holes history (a column of the rear sheet is missing)", history_file.string()));
@@ -49,6 +52,7 @@ std::vector<std::pair<RearState, long long>> read_rear_states(
     s.D = value(r, D);
     s.equivalent = value(r, equivalent);
     s.bulge = value(r, bulge);
+    if (thickness >= 0) s.thickness = value(r, thickness);
     out.emplace_back(s, static_cast<long long>(value(r, step)));
   }
   return out;
@@ -85,7 +89,7 @@ bool SettleCheck::same(const RearState& a, const RearState& b) const {
 std::optional<std::string> SettleCheck::settled() const {
   if (states_.empty()) return std::nullopt;
   const RearState& now = states_.back();
-  if (!now.hole && now.bulge <= 0) return std::nullopt;  // the rear sheet not reached yet
+  if (!now.reached()) return std::nullopt;
   const double start = now.time - window_ * (1 - 1e-9);  // a snapshot at t - W counts
   bool covered = false;
   for (auto s = states_.rbegin() + 1; s != states_.rend(); ++s) {

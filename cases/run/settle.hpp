@@ -4,8 +4,10 @@
 //   P (a through-hole): the hole's diameter D_r and its equivalent diameter stay within
 //     `settle_tolerance` (relative) of the newest snapshot's over the last W;
 //   P by detached spall alone: spall, and no hole, at every snapshot of the last W;
-//   NP: the sheet has been reached (a bulge > 0), and no hole and no spall and a bulge within the
-//     same tolerance at every snapshot of the last W: the sheet's deepest point is at rest.
+//   NP: the cloud has reached the sheet (a bulge of a quarter of the sheet's thickness t_r or more,
+//     where the scene gives t_r: the wave the walls carry ahead of the cloud bends it microns),
+//     and no hole and no spall and a bulge within the same tolerance at every snapshot of the
+//     last W: the sheet's deepest point is at rest.
 // Spall that comes off a sheet with a hole and later leaves the grid changes nothing. The
 // window must be covered: a snapshot at or before t - W is needed, so W should span at least two
 // output intervals. A run that stops so is "settled"; its last snapshot is the full run's snapshot
@@ -24,6 +26,10 @@ struct RearState {
   bool hole = false, spall = false;
   double D = 0, equivalent = 0;  // the hole's, m (0 without one)
   double bulge = 0;              // m (0 with a hole)
+  double thickness = 0;          // the rear sheet's, t_r, m (0: not known)
+  // The cloud has reached the sheet: a hole, spall, or a bulge of t_r / 4 (any bulge if t_r is
+  // not known).
+  bool reached() const { return hole || spall || (bulge > 0 && bulge >= thickness / 4); }
 };
 
 // The rear sheet's state in a measurement; nullopt for a run without a rear sheet.
