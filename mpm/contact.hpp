@@ -34,7 +34,6 @@
 #include <vector>
 
 #include "mpm/bond.hpp"
-
 #include "mpm/grid.hpp"
 #include "mpm/particle_bins.hpp"
 #include "mpm/particles.hpp"

@@ -162,14 +162,12 @@ void read_contact(const toml::table& t, Scene& s, Checker& c) {
 void read_bond(const toml::table& t, Scene& s, Checker& c) {
   BondSceneSettings b;
   const std::string name = text(t, "panel");
-  std::string known;
-  for (const auto& p : s.panels) known += (known.empty() ? "'" : ", '") + p.name + "'";
   b.panel = s.panels.size();
   for (std::size_t p = 0; p < s.panels.size(); ++p)
     if (s.panels[p].name == name) b.panel = p;
   if (b.panel == s.panels.size())
-    c.error("bond.panel", fmt::format("no [[panel]] named '{}'; panels: {}", name,
-                                      known.empty() ? "none" : known));
+    c.error("bond.panel",
+            fmt::format("no [[panel]] named '{}'; panels: {}", name, detail::panel_names(s)));
   else if (s.far_field && s.far_field->panel == b.panel)
     c.error("bond.panel",
             "the far field's panel has no core of points to bond: bond a panel "

@@ -301,16 +301,20 @@ void read_zone_growth(const toml::table& t, Scene& s, const Validated& v,
 
 }  // namespace
 
+std::string panel_names(const Scene& s) {
+  std::string names;
+  for (const auto& p : s.panels) names += (names.empty() ? "'" : ", '") + p.name + "'";
+  return names.empty() ? "none" : names;
+}
+
 void read_far_field(const toml::table& t, Scene& s, const Validated& v,
                     std::vector<Diagnostic>& errors) {
   auto error = [&](const std::string& key, std::string message) {
     errors.push_back(v.at("far_field." + key, std::move(message)));
   };
   if (!s.far_field) {
-    std::string names;
-    for (const auto& p : s.panels) names += (names.empty() ? "'" : ", '") + p.name + "'";
-    error("panel", fmt::format("no [[panel]] named '{}'; panels: {}", text(t, "panel"),
-                               names.empty() ? "none" : names));
+    error("panel",
+          fmt::format("no [[panel]] named '{}'; panels: {}", text(t, "panel"), panel_names(s)));
     return;
   }
   FarFieldSettings& f = *s.far_field;

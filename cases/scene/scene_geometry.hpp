@@ -24,6 +24,8 @@ void resolve_mesh_files(toml::array& bodies, const std::string& scene_file, cons
 MeshShape read_mesh(const toml::table& mesh, const GridSettings& grid);
 // What is wrong with a body's or a panel's clip (empty, or missing the grid), or "".
 std::string clip_problem(const BoxShape& clip, const GridSettings& grid);
+// The scene's panels for a message: "'a', 'b'", or "none".
+std::string panel_names(const Scene& s);
 // Appends <panel>.front, .core and .rear to s.bodies (after the [[body]] entries). The panel a
 // [far_field] table names (`far_field`, may be null) is material points in its zone only.
 void read_panels(const toml::array& panels, Scene& s, const Validated& v,
