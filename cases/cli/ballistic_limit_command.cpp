@@ -12,8 +12,8 @@
 
 #include "analysis/ballistic_limit_equation.hpp"
 #include "cases/cli/child_run.hpp"
+#include "cases/cli/curve_search.hpp"
 #include "cases/cli/experiments.hpp"
-#include "cases/cli/limit_search.hpp"
 #include "cases/cli/option_value.hpp"
 #include "cases/cli/rear_outcome.hpp"
 #include "cases/cli/sweep_command.hpp"
@@ -113,14 +113,6 @@ std::string trial_name(double d, double v) {
   return fmt::format("v{:.3f}kms_d{:.4f}mm", v / km_s, d / mm);
 }
 
-// One speed's search (or one diameter's, with --vary velocity).
-struct Search {
-  double fixed;  // the speed (diameter mode) or the diameter (velocity mode)
-  LimitSearch search;
-  double wall = 0;
-  std::string failed;  // a trial that did not finish
-};
-
 }  // namespace
 
 std::vector<double> parse_speeds(const std::string& text) {
@@ -164,11 +156,10 @@ std::vector<Shot> matching_shots(const Setup& s, const BallisticLimitOptions& o)
   return out;
 }
 
-// Runs the trials of one round (the next of every search still going); false if interrupted or a
-// run could not be started.
-int run_round(const Setup& s, const BallisticLimitOptions& o, std::vector<Search>& searches,
+// Runs the trials of one round (search, value); the code of an interrupted study, else success.
+int run_round(const Setup& s, const BallisticLimitOptions& o,
+              const std::vector<std::pair<std::size_t, double>>& pending, CurveSearch& curve,
               Study& all, bool by_diameter, const parallel::Ranks& ranks) {
-  std::vector<std::pair<std::size_t, double>> pending;  // search, value
   SweepOptions sweep;
   sweep.study = o.scene;
   sweep.out = (fs::path(o.out) / "trials").string();
@@ -176,34 +167,31 @@ int run_round(const Setup& s, const BallisticLimitOptions& o, std::vector<Search
   sweep.hvi = o.hvi;
   sweep.quiet_end = true;
   sweep.quiet_start = true;
-  for (std::size_t k = 0; k < searches.size(); ++k) {
-    Search& search = searches[k];
-    if (!search.failed.empty()) continue;
-    const auto value = search.search.next();
-    if (!value) continue;
-    const double d = by_diameter ? *value : search.fixed, v = by_diameter ? search.fixed : *value;
+  auto trial = [&](std::size_t k, double value) {
+    const double fixed = curve.entry(k).point.fixed;
+    return by_diameter ? std::pair{value, fixed} : std::pair{fixed, value};  // d, v
+  };
+  for (const auto& [k, value] : pending) {
+    const auto [d, v] = trial(k, value);
     const std::string name = trial_name(d, v);
-    pending.emplace_back(k, *value);
     sweep.only.push_back(name);
     if (std::none_of(all.runs.begin(), all.runs.end(), [&](auto& r) { return r.name == name; }))
       all.runs.push_back(
           SweepRun{name, {{"speed", fmt::format("{:g}", v / km_s)}}, trial_overrides(s, o, d, v)});
   }
-  if (pending.empty()) return success;
   const int code = run_study(all, sweep, ranks);
   if (stopped_by_signal(code)) return code;
   const Criterion criterion = *parse_criterion(o.criterion);
   for (const auto& [k, value] : pending) {
-    Search& search = searches[k];
-    const double d = by_diameter ? value : search.fixed, v = by_diameter ? search.fixed : value;
+    const auto [d, v] = trial(k, value);
     const fs::path dir = fs::path(sweep.out) / trial_name(d, v);
-    search.wall += read_run_summary(dir).wall_seconds;
+    CurveSearch::Entry& e = curve.entry(k);
+    e.wall += read_run_summary(dir).wall_seconds;
     const auto outcome = read_rear_outcome(dir);
-    if (!outcome) {
-      search.failed = trial_name(d, v);
-      continue;
-    }
-    search.search.record(value, outcome->perforated(criterion));
+    if (!outcome)
+      e.failed = trial_name(d, v);
+    else
+      curve.record(k, value, outcome->perforated(criterion));
   }
   return success;
 }
@@ -212,52 +200,67 @@ std::string mm_or_blank(double v) {
   return std::isfinite(v) ? fmt::format("{:.6g}", v / mm) : "";
 }
 
+std::string status_of(const CurveSearch::Entry& x) {
+  if (!x.failed.empty()) return "trial " + x.failed + " failed";
+  return x.started ? x.search.status() : "waiting";
+}
+
+// Where a search's first trial came from: "srl" or a neighbour's speed (diameter), "5 km/s".
+std::string started_from(const CurveSearch::Entry& x, bool by_diameter) {
+  if (!x.started_from) return by_diameter ? "srl" : "geometric mean";
+  return by_diameter ? fmt::format("{:g} km/s", *x.started_from / km_s)
+                     : fmt::format("{:g} mm", *x.started_from / mm);
+}
+
 // ballistic_limit.csv and trials.csv, rewritten after every round.
-void write_limits(const Setup& s, const BallisticLimitOptions& o,
-                  const std::vector<Search>& searches, bool by_diameter) {
+void write_limits(const Setup& s, const BallisticLimitOptions& o, const CurveSearch& curve,
+                  bool by_diameter) {
   std::ofstream limits(fs::path(o.out) / "ballistic_limit.csv");
   std::ofstream trials(fs::path(o.out) / "trials.csv");
   if (by_diameter) {
     limits << "speed_km_s,critical_diameter_mm,stopped_mm,perforated_mm,trials,wall_seconds,"
-              "status,srl_critical_diameter_mm,srl_regime\n";
+              "status,srl_critical_diameter_mm,srl_regime,started_from\n";
     trials << "speed_km_s,diameter_mm,outcome,run\n";
   } else {
     limits << "diameter_mm,critical_speed_km_s,stopped_km_s,perforated_km_s,trials,wall_seconds,"
-              "status\n";
+              "status,started_from\n";
     trials << "diameter_mm,speed_km_s,outcome,run\n";
   }
-  for (const Search& x : searches) {
+  for (const CurveSearch::Entry& x : curve.entries()) {
     const LimitSearch& f = x.search;
-    const std::string status = x.failed.empty() ? f.status() : "trial " + x.failed + " failed";
+    const double fixed = x.point.fixed;
+    const std::string status = status_of(x), from = started_from(x, by_diameter);
     if (by_diameter) {
-      const auto srl = analysis::srl_critical_diameter(s.panel, s.projectile_density, x.fixed);
-      limits << fmt::format("{:g},{},{},{},{},{:.1f},{},{:.6g},{}\n", x.fixed / km_s,
+      const auto srl = analysis::srl_critical_diameter(s.panel, s.projectile_density, fixed);
+      limits << fmt::format("{:g},{},{},{},{},{:.1f},{},{:.6g},{},{}\n", fixed / km_s,
                             mm_or_blank(f.limit()), mm_or_blank(f.stopped()),
                             mm_or_blank(f.perforated()), f.trials(), x.wall, status,
-                            srl.diameter / mm, analysis::to_string(srl.regime));
+                            srl.diameter / mm, analysis::to_string(srl.regime), from);
     } else {
       auto kms = [](double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v / km_s) : ""; };
-      limits << fmt::format("{:g},{},{},{},{},{:.1f},{}\n", x.fixed / mm, kms(f.limit()),
-                            kms(f.stopped()), kms(f.perforated()), f.trials(), x.wall, status);
+      limits << fmt::format("{:g},{},{},{},{},{:.1f},{},{}\n", fixed / mm, kms(f.limit()),
+                            kms(f.stopped()), kms(f.perforated()), f.trials(), x.wall, status,
+                            from);
     }
     for (const auto& [value, p] : f.history()) {
-      const double d = by_diameter ? value : x.fixed, v = by_diameter ? x.fixed : value;
+      const double d = by_diameter ? value : fixed, v = by_diameter ? fixed : value;
       trials << fmt::format("{:.6g},{:.6g},{},{}\n", by_diameter ? v / km_s : d / mm,
                             by_diameter ? d / mm : v / km_s, p ? "P" : "NP", trial_name(d, v));
     }
   }
 }
 
-void print_limits(const std::vector<Search>& searches, bool by_diameter) {
-  fmt::print("\n{:>10} {:>12} {:>22} {:>7} {:>10}  {}\n", by_diameter ? "v (km/s)" : "d (mm)",
-             by_diameter ? "d_c (mm)" : "v_c (km/s)", "bracket (NP .. P)", "trials", "wall (s)",
-             "status");
+void print_limits(const CurveSearch& curve, bool by_diameter) {
+  fmt::print("\n{:>10} {:>12} {:>22} {:>7} {:>10}  {:<14}  {}\n",
+             by_diameter ? "v (km/s)" : "d (mm)", by_diameter ? "d_c (mm)" : "v_c (km/s)",
+             "bracket (NP .. P)", "trials", "wall (s)", "first trial", "status");
   const double unit = by_diameter ? mm : km_s, fixed_unit = by_diameter ? km_s : mm;
-  for (const Search& x : searches) {
+  for (const CurveSearch::Entry& x : curve.entries()) {
     const LimitSearch& f = x.search;
-    fmt::print("{:>10.3g} {:>12.4g} {:>10.4g} .. {:>8.4g} {:>7} {:>10.1f}  {}\n",
-               x.fixed / fixed_unit, f.limit() / unit, f.stopped() / unit, f.perforated() / unit,
-               f.trials(), x.wall, x.failed.empty() ? f.status() : "trial " + x.failed + " failed");
+    fmt::print("{:>10.3g} {:>12.4g} {:>10.4g} .. {:>8.4g} {:>7} {:>10.1f}  {:<14}  {}\n",
+               x.point.fixed / fixed_unit, f.limit() / unit, f.stopped() / unit,
+               f.perforated() / unit, f.trials(), x.wall, started_from(x, by_diameter),
+               status_of(x));
   }
 }
 
@@ -298,60 +301,61 @@ int run_ballistic_limit(const BallisticLimitOptions& o, const parallel::Ranks& r
     throw std::invalid_argument(fmt::format(
         "--criterion {} --vary {}: expected hole, spall or either, and diameter or velocity",
         o.criterion, o.vary));
+  if (o.start_from != "neighbour" && o.start_from != "srl")
+    throw std::invalid_argument(
+        fmt::format("--start-from {}: expected neighbour or srl", o.start_from));
   const Setup s = read_setup(o);
   const bool by_diameter = o.vary == "diameter";
   const std::vector<double> speeds = parse_speeds(o.speeds);
-  std::vector<Search> searches;
+  std::vector<CurvePoint> points;
   if (by_diameter) {
-    for (const double v : speeds) {
-      const double guess =
-          analysis::srl_critical_diameter(s.panel, s.projectile_density, v).diameter;
-      searches.push_back(
-          {v, LimitSearch({.start = guess, .tolerance = o.tolerance, .max_trials = o.max_trials}),
-           0, ""});
-    }
+    for (const double v : speeds)
+      points.push_back(
+          {v, analysis::srl_critical_diameter(s.panel, s.projectile_density, v).diameter});
   } else {
     if (o.diameter.empty() || speeds.size() != 2)
       throw std::invalid_argument(
           "--vary velocity: give --diameter and --speeds LOW,HIGH (the first trial at their "
           "geometric mean)");
-    const double d = quantity("--diameter", o.diameter, "length");
-    searches.push_back({d,
-                        LimitSearch({.start = std::sqrt(speeds[0] * speeds[1]),
-                                     .tolerance = o.tolerance,
-                                     .max_trials = o.max_trials,
-                                     .quantum = 1.0}),
-                        0, ""});
+    points.push_back(
+        {quantity("--diameter", o.diameter, "length"), std::sqrt(speeds[0] * speeds[1])});
   }
+  // With carry, --parallel-searches at a time (1: on one rank a round runs its trials one after
+  // the other, so waiting for a neighbour costs nothing). Not the ranks' count: the trials must
+  // not depend on it.
+  CurveSearch curve(points, {.search = {.tolerance = o.tolerance,
+                                        .max_trials = o.max_trials,
+                                        .quantum = by_diameter ? 1e-6 : 1.0},
+                             .carry = o.start_from == "neighbour",
+                             .in_flight = o.parallel_searches});
   fs::create_directories(fs::path(o.out) / "trials");
   Study all{fmt::format("ballistic limit of {}", o.scene), o.scene, {}};
   // Under mpirun every rank runs the same searches: each round's trials are shared among the
   // ranks (run_study), and every rank reads their outcomes when all have ended; rank 0 writes.
   const bool root = ranks.root();
   if (root)
-    fmt::print("hvi ballistic-limit: {} — {} search{}, tolerance {:g}%{}\n", o.scene,
-               searches.size(), searches.size() == 1 ? "" : "es", o.tolerance * 100,
+    fmt::print("hvi ballistic-limit: {} — {} search{}, tolerance {:g}%{}\n", o.scene, points.size(),
+               points.size() == 1 ? "" : "es", o.tolerance * 100,
                ranks.size() > 1
                    ? fmt::format(", each round's trials shared among {} ranks", ranks.size())
                    : "");
-  auto going = [](const Search& x) { return x.failed.empty() && x.search.next().has_value(); };
-  while (std::any_of(searches.begin(), searches.end(), going)) {
-    const int code = run_round(s, o, searches, all, by_diameter, ranks);
+  for (auto round = curve.round(); !round.empty(); round = curve.round()) {
+    const int code = run_round(s, o, round, curve, all, by_diameter, ranks);
     if (code != success) {
       if (root)
         fmt::print("hvi ballistic-limit: interrupted; run the same command again to resume\n");
       return code;
     }
-    if (root) write_limits(s, o, searches, by_diameter);
+    if (root) write_limits(s, o, curve, by_diameter);
   }
   if (root) {
-    write_limits(s, o, searches, by_diameter);
-    print_limits(searches, by_diameter);
+    write_limits(s, o, curve, by_diameter);
+    print_limits(curve, by_diameter);
     write_experiments(o, matching_shots(s, o));
     write_srl(s, o, speeds);
     plot(o);
   }
-  return std::all_of(searches.begin(), searches.end(),
+  return std::all_of(curve.entries().begin(), curve.entries().end(),
                      [](auto& x) { return x.failed.empty() && x.search.converged(); })
              ? success
              : run_failed;

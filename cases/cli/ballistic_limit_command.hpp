@@ -4,13 +4,17 @@
 // until the largest diameter the rear facesheet stopped and the smallest that failed it are within
 // the tolerance; with --vary velocity, the speed at a fixed diameter. Each trial is an ordinary run
 // in DIR/trials/<trial>/ (hvi sweep: resumable, DIR/trials/sweep.csv); the trials of the speeds
-// still searching run together, one round at a time, so an interrupted search resumes from the
-// trials it finished. The rear facesheet fails as rear_outcome.hpp says (--criterion).
+// searching run together, one round at a time, so an interrupted search resumes from the trials
+// it finished. The rear facesheet fails as rear_outcome.hpp says (--criterion).
 //
 // The scene's projectile is a sphere body (--projectile, default "projectile"): a trial scales it
 // about its leading point, sets its speed along its own direction and ends at the scene's end time
-// times v_scene / v. The first trial at each speed is the SRL equation's critical diameter
-// (analysis/ballistic_limit_equation.hpp) for the scene's first panel.
+// times v_scene / v. The first trial of the fastest speed is the SRL equation's critical
+// diameter (analysis/ballistic_limit_equation.hpp) for the scene's first panel; with
+// --start-from neighbour (the default) the speeds are searched --parallel-searches at a time (1),
+// fastest first, and each later one starts from its nearest converged neighbour's limit
+// (curve_search.hpp); with --start-from srl every speed starts from the SRL equation's, all in
+// the first round. The trials do not depend on the ranks' count.
 //
 // Writes DIR/ballistic_limit.csv (speed, critical diameter, bracket, trials, wall time, status,
 // SRL), DIR/trials.csv (every trial and its outcome), DIR/srl.csv (the SRL curve), DIR/
@@ -32,6 +36,8 @@ struct BallisticLimitOptions {
   std::string criterion = "either";
   std::string rear_yield;  // for the SRL equation; default: the rear sheet's Johnson-Cook A
   std::string database;    // experiments to plot; default: hcsp_shots.csv beside the scene
+  std::string start_from = "neighbour";  // neighbour | srl
+  int parallel_searches = 1;             // with neighbour: searches running at once
   double tolerance = 0.05;
   int max_trials = 16;
   int threads = 0;

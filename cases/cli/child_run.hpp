@@ -34,12 +34,13 @@ std::string shell_quote(const std::string& s);
 
 // What a finished run's summary.toml says.
 struct RunSummary {
-  std::string status;  // finished, stopped, interrupted; empty: no summary
+  std::string status;  // finished, settled, stopped, interrupted; empty: no summary
   double wall_seconds = 0, peak_memory = 0, particles = 0, steps = 0, energy_balance = 0;
   // The command's peak with its hole measurement (NaN: no such measure, or an older run).
   double peak_memory_with_measure = std::numeric_limits<double>::quiet_NaN();
   std::map<std::string, double> measures;
-  bool finished() const { return status == "finished"; }
+  // Ended as the scene asks: at its end time, or once its rear sheet settled (settle.hpp).
+  bool finished() const { return status == "finished" || status == "settled"; }
 };
 RunSummary read_run_summary(const std::filesystem::path& run_dir);
 

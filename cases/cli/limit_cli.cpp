@@ -47,6 +47,12 @@ std::unique_ptr<BallisticLimitCli> add_ballistic_limit_command(CLI::App& app) {
   c->add_option("--max-trials", o.max_trials, "Trials per search at most")
       ->check(CLI::Range(1, 100));
   c->add_option("--criterion", o.criterion, "What fails the rear sheet: hole, spall or either");
+  c->add_option("--start-from", o.start_from,
+                "A speed's first trial: neighbour (a converged speed's limit, default) or srl");
+  c->add_option("--parallel-searches", o.parallel_searches,
+                "With --start-from neighbour: speeds searched at once (default 1; under mpirun, "
+                "up to the ranks)")
+      ->check(CLI::Range(1, 1000));
   c->add_option("--projectile", o.projectile, "The sphere body varied (default: projectile)");
   c->add_option("--rear-yield", o.rear_yield,
                 "Rear sheet's yield for the SRL equation (default: its Johnson-Cook A)");

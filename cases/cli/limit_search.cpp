@@ -34,10 +34,12 @@ std::optional<double> LimitSearch::next() const {
   if (history_.empty()) return round(o_.start);
   const bool have_p = !std::isnan(perforated_), have_np = !std::isnan(stopped_);
   if (have_p && have_np) return round(std::sqrt(stopped_ * perforated_));
-  // Bracketing: move away from the outcome seen, toward the other.
+  // Bracketing: move away from the outcome seen, toward the other, by step^(growth^(n - 1)) after
+  // n trials of the one outcome.
   const bool up = have_np == o_.perforates_above;
   const double from = have_np ? stopped_ : perforated_;
-  return round(up ? from * o_.step : from / o_.step);
+  const double factor = std::pow(o_.step, std::pow(o_.growth, trials() - 1));
+  return round(up ? from * factor : from / factor);
 }
 
 void LimitSearch::record(double value, bool perforated) {

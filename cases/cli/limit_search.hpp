@@ -14,7 +14,8 @@ namespace hvi::driver {
 struct LimitSearchOptions {
   double start = 0;              // first trial value (> 0)
   double tolerance = 0.05;       // bracket width upper / lower - 1
-  double step = 1.5;             // bracketing factor
+  double step = 1.5;             // bracketing factor of the second trial
+  double growth = 1.0;           // each later factor is the one before to this power (1: constant)
   int max_trials = 16;           // give up after this many trials
   double quantum = 1e-6;         // values rounded to a multiple of this
   bool perforates_above = true;  // larger values perforate (diameter, speed)

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/ballistic_limit_equation.hpp"
+#include "cases/cli/curve_search.hpp"
 #include "cases/cli/experiments.hpp"
 #include "cases/cli/limit_search.hpp"
 #include "cases/cli/rear_outcome.hpp"
@@ -123,6 +124,99 @@ TEST(LimitSearch, GivesUpWithoutABracket) {
   EXPECT_EQ(s.trials(), 3);
   EXPECT_TRUE(std::isnan(s.limit()));
   EXPECT_EQ(s.status(), "no bracket after 3 trials");
+}
+
+TEST(LimitSearch, AGrowingStepReachesAFarLimitInFewTrials) {
+  // Steps 1.1, 1.21, 1.46, 2.14 from 1 mm: the limit at 3 mm is bracketed on the fifth trial.
+  LimitSearch s({.start = 1 * mm, .tolerance = 0.05, .step = 1.1, .growth = 2});
+  std::vector<double> tried;
+  while (const auto d = s.next()) {
+    tried.push_back(*d);
+    s.record(*d, *d >= 3 * mm);
+  }
+  ASSERT_GE(tried.size(), 5u);
+  EXPECT_NEAR(tried[1], 1.1 * mm, 1e-6);  // rounded to 1 um
+  EXPECT_NEAR(tried[2], 1.1 * 1.21 * mm, 2e-6);
+  EXPECT_NEAR(tried[4], 1.1 * 1.21 * 1.4641 * 2.14358881 * mm, 4e-6);
+  EXPECT_TRUE(s.converged());
+  EXPECT_LT(s.stopped(), 3 * mm);
+  EXPECT_GE(s.perforated(), 3 * mm);
+}
+
+// A made-up panel for the curve: its limit is 1.4-1.9 times Lambert A's SRL d_c, the ratio
+// changing smoothly with the speed (hvi's limit against the SRL equation's, as Turner's panel at
+// 5 km/s gave 1.67).
+double made_up_limit(double v) {
+  return d_c(v / km_s) * (1.4 + 0.1 * (v / km_s - 2));
+}
+
+struct CurveResult {
+  CurveSearch curve;
+  int trials = 0, rounds = 0;
+};
+
+CurveResult search_curve(bool carry, int in_flight = 1) {
+  std::vector<CurvePoint> points;
+  for (const double v : {2.0, 3.0, 4.0, 5.0, 6.0, 7.0}) points.push_back({v * km_s, d_c(v)});
+  CurveResult r{
+      CurveSearch(points, {.search = {.tolerance = 0.05}, .carry = carry, .in_flight = in_flight})};
+  for (auto round = r.curve.round(); !round.empty(); round = r.curve.round()) {
+    ++r.rounds;
+    for (const auto& [k, d] : round) {
+      ++r.trials;
+      r.curve.record(k, d, d >= made_up_limit(r.curve.entries()[k].point.fixed));
+    }
+  }
+  for (const auto& e : r.curve.entries()) {
+    const double limit = made_up_limit(e.point.fixed);
+    EXPECT_TRUE(e.search.converged()) << e.point.fixed;
+    EXPECT_LT(e.search.stopped(), limit);
+    EXPECT_GE(e.search.perforated(), limit);
+  }
+  return r;
+}
+
+TEST(CurveSearch, StartingFromTheNeighbourHalvesTheTrials) {
+  // From the SRL equation every speed takes 6 or 7 trials. From the neighbour's limit, after the
+  // fastest speed's 7: 3 each, and 5 at 2 km/s, where the SRL equation changes regime (its ratio
+  // to the limit jumps).
+  const CurveResult srl = search_curve(false), carried = search_curve(true);
+  EXPECT_EQ(srl.trials, 40);
+  EXPECT_EQ(srl.rounds, 7);  // every speed each round
+  EXPECT_EQ(carried.trials, 24);
+  EXPECT_EQ(carried.rounds, 24);  // one speed at a time
+  const std::vector<int> each = {5, 3, 3, 3, 3, 7};
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_EQ(carried.curve.entries()[k].search.trials(), each[k]);
+  // The fastest first, then each from the one before.
+  const auto& e = carried.curve.entries();
+  EXPECT_FALSE(e[5].started_from.has_value());
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(e[k].started_from, e[k + 1].point.fixed) << k;
+}
+
+TEST(CurveSearch, TwoAtOnceStartTheTwoFastestFromTheirGuesses) {
+  const CurveResult two = search_curve(true, 2);
+  const auto& e = two.curve.entries();
+  EXPECT_FALSE(e[5].started_from.has_value());
+  EXPECT_FALSE(e[4].started_from.has_value());
+  EXPECT_LT(two.rounds, search_curve(true).rounds);
+  EXPECT_LT(two.trials, search_curve(false).trials);
+}
+
+TEST(CurveSearch, ReplayingTheOutcomesGivesTheSameRounds) {
+  const CurveResult a = search_curve(true);
+  std::vector<CurvePoint> points;
+  for (const auto& e : a.curve.entries()) points.push_back(e.point);
+  CurveSearch b(points, {.search = {.tolerance = 0.05}});
+  std::vector<std::size_t> used(points.size(), 0);
+  for (auto round = b.round(); !round.empty(); round = b.round())
+    for (const auto& [k, d] : round) {
+      const auto& [value, perforated] = a.curve.entries()[k].search.history().at(used[k]++);
+      ASSERT_EQ(d, value);
+      b.record(k, d, perforated);
+    }
+  for (std::size_t k = 0; k < points.size(); ++k)
+    EXPECT_EQ(b.entries()[k].search.limit(), a.curve.entries()[k].search.limit());
 }
 
 std::vector<Shot> database() {

@@ -75,7 +75,8 @@ TEST(BallisticLimitRun, TwoRanksShareEachRoundsTrials) {
                  two = hvi::test::scratch("ballistic_limit_two");
   const fs::path log = hvi::test::scratch("ballistic_limit_two.log");
   const std::string args = "ballistic-limit " + scene +
-                           " --speeds 3,4km/s --tolerance 0.3 --max-trials 4 --threads 1 --out ";
+                           " --speeds 3,4km/s --tolerance 0.3 --max-trials 4 --threads 1"
+                           " --parallel-searches 2 --out ";
   ASSERT_EQ(hvi::test::run_logged(args + one.string(), log), 0) << hvi::test::read(log);
   const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
                               mpirun + " --oversubscribe -np 2 " + HVI_BINARY + " " + args +
@@ -107,6 +108,11 @@ TEST(BallisticLimitRun, BadOptionsAreRefusedBeforeAnyRun) {
                            &err),
             2);
   EXPECT_NE(err.find("no sphere body of that name"), std::string::npos) << err;
+  EXPECT_EQ(hvi::test::run("ballistic-limit " + scene +
+                               " --speeds 3km/s --start-from guess --out " + out.string(),
+                           &err),
+            2);
+  EXPECT_NE(err.find("--start-from guess: expected neighbour or srl"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(out / "trials"));
 }
 

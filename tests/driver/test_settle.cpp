@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "cases/cli/child_run.hpp"
 #include "cases/run/settle.hpp"
 #include "tests/support/run_hvi.hpp"
 
@@ -123,8 +124,9 @@ TEST(Settle, ReadsAHistoryBack) {
 // every 0.5 us (about 7 s a run): the rear hole grows to 26.4 mm by 8 us and to 27.5 mm by 10 us.
 // Stopped when settled over 1 us within 5%, the run ends at 8 us, the first snapshot whose last
 // microsecond of snapshots lies within 5% of it, as "settled"; each snapshot it wrote is the full
-// run's, and its hole is the full run's at that time. Interrupted before it settles and resumed on
-// another thread count, it stops at the same step; hvi settled finds that step in the full run.
+// run's, and its hole is the full run's at that time, and a sweep counts it finished. Interrupted
+// before it settles and resumed on another thread count, it stops at the same step; hvi settled
+// finds that step in the full run.
 TEST(Settle, ARunStopsOnceItsRearHoleHasSettledAtTheFullRunsState) {
   std::string scene = " ";
   scene += HVI_SOURCE_DIR;
@@ -143,6 +145,8 @@ TEST(Settle, ARunStopsOnceItsRearHoleHasSettledAtTheFullRunsState) {
   const std::string summary = read(settled / "summary.toml");
   EXPECT_NE(summary.find("status = 'settled'"), std::string::npos) << summary;
   EXPECT_NE(summary.find("within 5% over the last 1 us"), std::string::npos) << summary;
+  // A settled run ended as it should: a sweep (and a ballistic-limit search) counts it done.
+  EXPECT_TRUE(hvi::driver::read_run_summary(settled).finished());
   const double t = summary_number(settled, "time");
   EXPECT_LT(t, 0.85 * summary_number(full, "time"));
   int snapshots = 0;
